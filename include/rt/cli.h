@@ -1,0 +1,30 @@
+// The command line: parsing is separate from main() so that tests can check it.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "rt/options.h"
+
+namespace rt {
+
+struct CommandLine {
+    RenderOptions render;
+    std::string input = "-";   // the scene; "-" is standard input
+    std::string output = "-";  // the image; "-" is standard output
+    bool read_only = false;
+    bool help = false;
+    bool version = false;
+};
+
+// Throws UsageError for anything it cannot make sense of.
+struct UsageError {
+    std::string message;
+};
+
+CommandLine parse_command_line(const std::vector<std::string>& args);
+
+// The text of --help.
+const char* usage_text();
+
+}  // namespace rt

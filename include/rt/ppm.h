@@ -1,0 +1,57 @@
+// PPM images: the renderer's output (P6) and textures (P6 or P3).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "rt/raster.h"
+
+namespace rt {
+
+// round(255 * clamp(c, 0, 1)); NaN counts as 0.
+std::uint8_t to_byte(double c);
+
+// Writes the raster as binary PPM (P6, maxval 255).
+void write_ppm(std::ostream& out, const Raster& raster);
+
+// Writes to a temporary file beside `path` and renames it over `path` only once everything is
+// written, so a failed render never leaves a damaged or missing image behind. "-" writes to
+// standard output. Throws rt::Error on failure.
+class OutputFile {
+public:
+    explicit OutputFile(std::string path);
+    ~OutputFile();
+    OutputFile(const OutputFile&) = delete;
+    OutputFile& operator=(const OutputFile&) = delete;
+
+    void write(const Raster& raster);
+
+private:
+    std::string path_;
+    std::filesystem::path temporary_;
+    bool committed_ = false;
+};
+
+// An image read from a PPM file, components scaled to [0, 1], rows from the top.
+struct Image {
+    int width = 0;
+    int height = 0;
+    std::vector<float> values;  // width * height * 3
+
+    Spectrum at(int x, int y) const {
+        const std::size_t i = (static_cast<std::size_t>(y) * width + x) * 3;
+        return {values[i], values[i + 1], values[i + 2]};
+    }
+};
+
+// The largest texture rt reads, in pixels.
+inline constexpr long kMaxImagePixels = 64L * 1024 * 1024;
+
+// Reads a P6 or P3 file; throws rt::Error("<reason>") without a location, which the caller
+// adds.
+Image read_ppm(const std::filesystem::path& path);
+
+}  // namespace rt

@@ -1,0 +1,67 @@
+// The table of primitive types: one row per ID, each with read, intersect and normal functions
+// and the bounds and inside functions that bounding volumes and CSG need.
+#pragma once
+
+#include <memory>
+#include <span>
+
+#include "rt/ray.h"
+
+namespace rt {
+
+class SceneReader;
+
+// What an intersect routine reports: the distance along the ray, and which part of a
+// primitive made of several (the face of a box, say) was hit, so the normal can use it.
+struct Hit {
+    double t = kInfinity;
+    int part = 0;
+};
+
+// A primitive's parameters, owned here and seen only by the primitive's own source file.
+using ShapeData = std::shared_ptr<const void>;
+
+// Reads the primitive's numbers (after its ID) and returns its precomputed parameters.
+using ReadShapeFn = ShapeData(SceneReader& reader);
+// Finds the nearest hit with range.t_min < t < range.t_max along a ray whose direction is
+// unit length. Returns false, leaving hit alone, when there is none.
+using IntersectFn = bool(const void* shape, const Ray& ray, Interval range, Hit& hit);
+// The unit outward normal at a point on the surface reported by intersect.
+using NormalFn = Vec3(const void* shape, const Vec3& point, const Hit& hit);
+// A box that contains the whole primitive (infinite for unbounded ones).
+using BoundsFn = Bounds(const void* shape);
+// True when a point lies inside a solid primitive.
+using InsideFn = bool(const void* shape, const Vec3& point);
+
+struct PrimitiveType {
+    int id;
+    const char* name;
+    ReadShapeFn* read;
+    IntersectFn* intersect;
+    NormalFn* normal;
+    BoundsFn* bounds;
+    InsideFn* inside;  // nullptr where the primitive encloses no volume (disk, triangle, ...)
+};
+
+// A primitive type with its parameters: what the scene stores for each primitive.
+struct Shape {
+    const PrimitiveType* type = nullptr;
+    ShapeData data;
+
+    bool intersect(const Ray& ray, Interval range, Hit& hit) const {
+        return type->intersect(data.get(), ray, range, hit);
+    }
+    Vec3 normal(const Vec3& point, const Hit& hit) const {
+        return type->normal(data.get(), point, hit);
+    }
+    Bounds bounds() const { return type->bounds(data.get()); }
+    bool has_inside() const { return type->inside != nullptr; }
+    bool inside(const Vec3& point) const { return type->inside(data.get(), point); }
+};
+
+// The whole table, sorted by ID.
+std::span<const PrimitiveType> primitive_types();
+// The row for an ID, or nullptr when no primitive has that ID.
+const PrimitiveType* find_primitive_type(int id);
+
+}  // namespace rt

@@ -1,0 +1,89 @@
+// The scene reader: turns the numeric scene format into a Scene, or throws rt::Error naming
+// the file, line and column of the first problem.
+#pragma once
+
+#include <filesystem>
+#include <istream>
+#include <string>
+#include <string_view>
+
+#include "rt/lexer.h"
+#include "rt/light.h"
+#include "rt/primitive.h"
+#include "rt/scene.h"
+#include "rt/surface.h"
+
+namespace rt {
+
+// Affine primitives, surfaces and lights and checker surfaces hold other objects; input that
+// nests them deeper than this is refused, so no input can overflow the stack.
+inline constexpr int kMaxNesting = 32;
+
+// The largest image rt will allocate, in pixels per side and in total; a viewer asking for
+// more is an error before anything is allocated.
+inline constexpr long kMaxResolution = 16384;
+inline constexpr long kMaxPixels = 64L * 1024 * 1024;
+
+// Reads one scene. The read functions of the object tables call back into it for their
+// numbers, so every error they report carries a place in the file.
+class SceneReader {
+public:
+    // name is used in messages ("<stdin>" for standard input); relative texture paths are
+    // resolved against base_dir.
+    SceneReader(std::istream& in, std::string name, std::filesystem::path base_dir);
+
+    Scene read_scene();
+
+    // Field readers; `what` names the field in messages ("sphere radius").
+    double number(std::string_view what);
+    double positive(std::string_view what);      // > 0
+    double non_negative(std::string_view what);  // >= 0
+    Vec3 vec3(std::string_view what);
+    Vec3 nonzero_vec3(std::string_view what);  // a direction: zero length is an error
+    long whole(std::string_view what, long min, long max);
+    std::string path(std::string_view what);
+
+    // Nested objects: an inner primitive (ID and numbers, no surface), a surface (ID and
+    // numbers, or 106 for the current default), a positioned light (ID and numbers).
+    Shape shape(std::string_view what);
+    SurfacePtr surface();
+    Light light(std::string_view what);
+
+    // Where the next token starts: read it before a field to report errors about that field.
+    Location next_location() { return lexer_.peek().where; }
+    [[noreturn]] void fail(Location where, std::string_view message) const;
+    std::filesystem::path resolve(const std::string& path) const;
+
+private:
+    // Counts nesting depth while an affine or checker reads what it holds.
+    class Nest {
+    public:
+        Nest(SceneReader& reader, Location where);
+        ~Nest() { --reader_.depth_; }
+        Nest(const Nest&) = delete;
+        Nest& operator=(const Nest&) = delete;
+
+    private:
+        SceneReader& reader_;
+    };
+
+    long id(std::string_view what);
+    void read_top_level_object(Scene& scene, bool& have_viewer);
+    Viewer read_viewer();
+
+    Lexer lexer_;
+    std::string name_;
+    std::filesystem::path base_dir_;
+    SurfacePtr default_surface_;
+    int depth_ = 0;
+};
+
+// A number as messages show it (%g).
+std::string format_number(double value);
+
+// Convenience wrappers: read a whole scene from a stream or a file ("-" for stdin).
+Scene read_scene(std::istream& in, const std::string& name,
+                 const std::filesystem::path& base_dir = {});
+Scene read_scene_file(const std::string& path);
+
+}  // namespace rt

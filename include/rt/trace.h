@@ -1,0 +1,63 @@
+// The recursive tracer of sections 1.6 to 1.10 of the original.
+#pragma once
+
+#include <optional>
+
+#include "rt/options.h"
+#include "rt/raster.h"
+#include "rt/scene.h"
+
+namespace rt {
+
+// Hits nearer than this, relative to the size of the ray origin's coordinates, are rejected,
+// so that a ray leaving a surface does not find that surface again at its own origin
+// (the "trapped rays" of section 1.10.1).
+inline constexpr double kHitTolerance = 1e-7;
+
+// The smallest distance a hit along a ray from `origin` may have.
+double hit_tolerance(const Vec3& origin);
+
+// The mirror direction of `incoming` about a unit normal.
+Vec3 reflect(const Vec3& incoming, const Vec3& normal);
+// The direction refracted by Snell's law for a unit incoming direction and a unit normal that
+// faces it (dot(incoming, normal) <= 0), where eta = n1 / n2. Nothing on total internal
+// reflection.
+std::optional<Vec3> refract(const Vec3& incoming, const Vec3& normal, double eta);
+
+struct SceneHit {
+    const Object* object;
+    Hit hit;
+};
+
+class Tracer {
+public:
+    Tracer(const Scene& scene, const RenderOptions& options) : scene_(scene), options_(options) {}
+
+    // The light arriving back along a ray; depth and weight as the contract's recursion rules,
+    // ior the refractive index of the medium the ray travels in.
+    Spectrum trace(const Ray& ray, int depth = 0, double weight = 1, double ior = 1) const;
+    // A primary ray's value in the current render mode.
+    Spectrum shade_primary(const Ray& ray) const;
+    // The value of pixel (x, y), averaging options.samples^2 primary rays.
+    Spectrum pixel(int x, int y) const;
+
+    std::optional<SceneHit> closest_hit(const Ray& ray) const;
+    // True when any object lies along the ray closer than `distance`.
+    bool blocked(const Ray& ray, double distance) const;
+
+private:
+    Spectrum direct_light(const Vec3& point, const Vec3& facing_normal, const Vec3& reflected,
+                          const Material& m, double ks) const;
+    bool may_trace(int depth, double weight) const {
+        return depth <= options_.max_depth && weight >= options_.min_weight;
+    }
+
+    const Scene& scene_;
+    const RenderOptions& options_;
+};
+
+// Renders every pixel of the scene's viewer. Rows are shared among threads, and each pixel
+// depends on nothing else, so the result is the same whatever the number of threads.
+Raster render(const Scene& scene, const RenderOptions& options);
+
+}  // namespace rt

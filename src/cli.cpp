@@ -1,0 +1,155 @@
+#include "rt/cli.h"
+
+#include <charconv>
+#include <cmath>
+#include <string_view>
+
+namespace rt {
+
+namespace {
+
+// The largest values the numeric options take: enough for any sensible render, small
+// enough that no option alone can make rt run for ever or allocate without bound.
+constexpr int kMaxDepthOption = 1000;
+constexpr int kMaxSamplesOption = 64;
+constexpr int kMaxThreadsOption = 1024;
+
+int parse_int(const std::string& option, const std::string& text, int min, int max) {
+    int value = 0;
+    const char* end = text.data() + text.size();
+    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+    if (ec != std::errc() || ptr != end || text.empty())
+        throw UsageError{option + " expects a whole number, got '" + text + "'"};
+    if (value < min || value > max)
+        throw UsageError{option + " must be between " + std::to_string(min) + " and " +
+                         std::to_string(max) + ", got " + text};
+    return value;
+}
+
+double parse_double(const std::string& option, const std::string& text) {
+    double value = 0;
+    const char* end = text.data() + text.size();
+    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+    if (ec != std::errc() || ptr != end || text.empty() || !std::isfinite(value) || value < 0)
+        throw UsageError{option + " expects a number >= 0, got '" + text + "'"};
+    return value;
+}
+
+RenderMode parse_mode(const std::string& text) {
+    if (text == "trace") return RenderMode::trace;
+    if (text == "depth") return RenderMode::depth;
+    if (text == "colour" || text == "color") return RenderMode::colour;
+    if (text == "normal") return RenderMode::normal;
+    throw UsageError{"-m expects trace, depth, colour or normal, got '" + text + "'"};
+}
+
+}  // namespace
+
+const char* usage_text() {
+    return R"(usage: rt [options] [scene]
+
+Renders a scene in rt's numeric scene format to a binary PPM image.
+The scene is read from the file named, or from standard input when it is
+'-' or absent.
+
+options:
+  -o, --output FILE   write the image to FILE ('-', the default: standard output)
+  -d, --depth N       maximum recursion depth for reflected and refracted rays
+                      (default 7; 0 traces no secondary rays)
+  -w, --weight W      do not trace rays whose weight is below W (default 0.01)
+  -m, --mode MODE     trace (default), depth, colour (or color), normal
+  -s, --samples N     N x N samples per pixel (default 1)
+  -j, --threads N     worker threads (default: one per hardware thread);
+                      the image is the same whatever N is
+  -r, --read-only     read and check the scene, print a summary, render nothing
+      --no-ambient    leave out the ambient term
+      --no-diffuse    leave out diffuse reflection of the lights
+      --no-specular   leave out specular highlights
+      --no-shadows    do not test shadow rays: every light reaches every point
+      --no-reflection do not trace reflected rays
+      --no-refraction do not trace refracted rays
+  -h, --help          print this help and exit
+  -V, --version       print the version and exit
+
+exit status: 0 success, 1 scene or input/output error, 2 usage error
+)";
+}
+
+CommandLine parse_command_line(const std::vector<std::string>& args) {
+    CommandLine cl;
+    bool have_input = false;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        std::string arg = args[i];
+        std::string value;
+        bool has_inline_value = false;
+        // --name=value and -dVALUE forms.
+        if (arg.rfind("--", 0) == 0) {
+            if (const auto eq = arg.find('='); eq != std::string::npos) {
+                value = arg.substr(eq + 1);
+                arg = arg.substr(0, eq);
+                has_inline_value = true;
+            }
+        } else if (arg.size() > 2 && arg[0] == '-' && std::string_view("dwmsjo").find(arg[1]) !=
+                                                          std::string_view::npos) {
+            value = arg.substr(2);
+            arg = arg.substr(0, 2);
+            has_inline_value = true;
+        }
+        auto take_value = [&]() -> std::string {
+            if (has_inline_value) return value;
+            if (i + 1 >= args.size()) throw UsageError{arg + " needs a value"};
+            return args[++i];
+        };
+        auto no_value = [&] {
+            if (has_inline_value) throw UsageError{arg + " takes no value"};
+        };
+        auto flag = [&](bool& target, bool setting) {
+            no_value();
+            target = setting;
+        };
+
+        RenderOptions& r = cl.render;
+        if (arg == "-o" || arg == "--output") {
+            cl.output = take_value();
+            if (cl.output.empty()) throw UsageError{"-o needs a file name"};
+        } else if (arg == "-d" || arg == "--depth") {
+            r.max_depth = parse_int("-d", take_value(), 0, kMaxDepthOption);
+        } else if (arg == "-w" || arg == "--weight") {
+            r.min_weight = parse_double("-w", take_value());
+        } else if (arg == "-m" || arg == "--mode") {
+            r.mode = parse_mode(take_value());
+        } else if (arg == "-s" || arg == "--samples") {
+            r.samples = parse_int("-s", take_value(), 1, kMaxSamplesOption);
+        } else if (arg == "-j" || arg == "--threads") {
+            r.threads = parse_int("-j", take_value(), 1, kMaxThreadsOption);
+        } else if (arg == "-r" || arg == "--read-only") {
+            flag(cl.read_only, true);
+        } else if (arg == "--no-ambient") {
+            flag(r.ambient, false);
+        } else if (arg == "--no-diffuse") {
+            flag(r.diffuse, false);
+        } else if (arg == "--no-specular") {
+            flag(r.specular, false);
+        } else if (arg == "--no-shadows") {
+            flag(r.shadows, false);
+        } else if (arg == "--no-reflection") {
+            flag(r.reflection, false);
+        } else if (arg == "--no-refraction") {
+            flag(r.refraction, false);
+        } else if (arg == "-h" || arg == "--help") {
+            flag(cl.help, true);
+        } else if (arg == "-V" || arg == "--version") {
+            flag(cl.version, true);
+        } else if (arg.size() > 1 && arg[0] == '-') {
+            throw UsageError{"unknown option '" + arg + "'"};
+        } else {
+            if (have_input) throw UsageError{"more than one scene file given ('" + cl.input +
+                                             "' and '" + arg + "')"};
+            cl.input = arg;
+            have_input = true;
+        }
+    }
+    return cl;
+}
+
+}  // namespace rt

@@ -1,0 +1,25 @@
+// The table of light types that have a position. The ambient light (103) is not sampled; the
+// reader adds it to the scene's ambient intensity.
+#include "id_table.h"
+#include "lights/lights.h"
+
+namespace rt {
+
+namespace {
+
+constexpr std::array kLightTypes{
+    LightType{101, "point light", point_light::read_with_falloff, point_light::sample_count,
+              point_light::sample},
+    LightType{104, "point light without falloff", point_light::read_without_falloff,
+              point_light::sample_count, point_light::sample},
+};
+
+static_assert(strictly_sorted_by_id(kLightTypes), "rows sorted by ID, each ID once");
+
+}  // namespace
+
+std::span<const LightType> light_types() { return kLightTypes; }
+
+const LightType* find_light_type(int id) { return find_by_id(kLightTypes, id); }
+
+}  // namespace rt

@@ -1,0 +1,151 @@
+#include "rt/ppm.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <random>
+
+#include "rt/error.h"
+
+namespace rt {
+
+std::uint8_t to_byte(double c) {
+    if (!(c > 0)) return 0;  // also catches NaN
+    if (c >= 1) return 255;
+    return static_cast<std::uint8_t>(std::lround(255 * c));
+}
+
+void write_ppm(std::ostream& out, const Raster& raster) {
+    out << "P6\n" << raster.width() << ' ' << raster.height() << "\n255\n";
+    std::vector<char> row(static_cast<std::size_t>(raster.width()) * 3);
+    for (int y = 0; y < raster.height(); ++y) {
+        for (int x = 0; x < raster.width(); ++x) {
+            const Spectrum s = raster.at(x, y);
+            for (std::size_t i = 0; i < 3; ++i)
+                row[static_cast<std::size_t>(x) * 3 + i] = static_cast<char>(to_byte(s[i]));
+        }
+        out.write(row.data(), static_cast<std::streamsize>(row.size()));
+    }
+}
+
+OutputFile::OutputFile(std::string path) : path_(std::move(path)) {
+    if (path_ == "-") return;
+    std::error_code ec;
+    if (std::filesystem::is_directory(path_, ec))
+        throw Error(path_ + ": cannot write the image: it is a directory");
+    // Create the temporary file now, so an unwritable place is reported before rendering.
+    std::random_device random;
+    const auto tag = std::to_string(random()) + std::to_string(random());
+    temporary_ = path_ + ".tmp-" + tag;
+    std::ofstream probe(temporary_, std::ios::binary);
+    if (!probe)
+        throw Error(path_ + ": cannot write the image: " + std::strerror(errno));
+}
+
+OutputFile::~OutputFile() {
+    if (!committed_ && !temporary_.empty()) {
+        std::error_code ec;
+        std::filesystem::remove(temporary_, ec);
+    }
+}
+
+void OutputFile::write(const Raster& raster) {
+    if (path_ == "-") {
+        write_ppm(std::cout, raster);
+        std::cout.flush();
+        if (!std::cout) throw Error("<stdout>: cannot write the image");
+        committed_ = true;
+        return;
+    }
+    {
+        std::ofstream out(temporary_, std::ios::binary | std::ios::trunc);
+        write_ppm(out, raster);
+        out.close();
+        if (!out) throw Error(path_ + ": cannot write the image: " + std::strerror(errno));
+    }
+    std::error_code ec;
+    std::filesystem::rename(temporary_, path_, ec);
+    if (ec) throw Error(path_ + ": cannot write the image: " + ec.message());
+    committed_ = true;
+}
+
+namespace {
+
+// Reads PPM header fields: whitespace-separated decimal numbers with # comments.
+class PpmHeader {
+public:
+    explicit PpmHeader(std::istream& in) : in_(in) {}
+
+    long number(const char* what) {
+        int c = in_.get();
+        for (;;) {
+            if (c == '#') {
+                while (c != EOF && c != '\n') c = in_.get();
+            } else if (c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f') {
+                c = in_.get();
+            } else {
+                break;
+            }
+        }
+        if (c < '0' || c > '9') throw Error(std::string("expected ") + what + " in the PPM file");
+        long value = 0;
+        while (c >= '0' && c <= '9') {
+            value = value * 10 + (c - '0');
+            if (value > 1'000'000'000) throw Error(std::string(what) + " too large in the PPM file");
+            c = in_.get();
+        }
+        last_ = c;  // the single whitespace character that ends the field
+        return value;
+    }
+    int last() const { return last_; }
+
+private:
+    std::istream& in_;
+    int last_ = EOF;
+};
+
+}  // namespace
+
+Image read_ppm(const std::filesystem::path& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw Error("it is a directory");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(std::string("cannot open it: ") + std::strerror(errno));
+    char magic[2] = {};
+    in.read(magic, 2);
+    if (!in || magic[0] != 'P' || (magic[1] != '6' && magic[1] != '3'))
+        throw Error("not a PPM file (expected P6 or P3)");
+    const bool binary = magic[1] == '6';
+    PpmHeader header(in);
+    Image image;
+    const long width = header.number("width");
+    const long height = header.number("height");
+    const long maxval = header.number("maximum value");
+    if (width < 1 || height < 1) throw Error("PPM image has no pixels");
+    if (width * height > kMaxImagePixels)
+        throw Error("PPM image larger than " + std::to_string(kMaxImagePixels) + " pixels");
+    if (maxval < 1 || maxval > 65535) throw Error("PPM maximum value must be 1 to 65535");
+    image.width = static_cast<int>(width);
+    image.height = static_cast<int>(height);
+    const std::size_t count = static_cast<std::size_t>(width * height) * 3;
+    image.values.resize(count);
+    const double scale = 1.0 / static_cast<double>(maxval);
+    for (std::size_t i = 0; i < count; ++i) {
+        long value = 0;
+        if (binary) {
+            const int hi = in.get();
+            const int lo = maxval > 255 ? in.get() : 0;
+            if (hi == EOF || lo == EOF) throw Error("PPM pixel data ends early");
+            value = maxval > 255 ? hi * 256 + lo : hi;
+        } else {
+            value = header.number("pixel value");
+        }
+        if (value > maxval) throw Error("PPM pixel value above the maximum value");
+        image.values[i] = static_cast<float>(static_cast<double>(value) * scale);
+    }
+    return image;
+}
+
+}  // namespace rt

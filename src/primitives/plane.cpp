@@ -1,0 +1,35 @@
+// Plane (ID 2): D; normal n. The points with n.x = D (section 2.3 of the original). Its inside,
+// for CSG, is the half-space n.x < D.
+#include "primitives/planar.h"
+#include "primitives/primitives.h"
+#include "rt/reader.h"
+
+namespace rt::plane {
+
+ShapeData read(SceneReader& reader) {
+    const double d = reader.number("plane D");
+    const Vec3 n = reader.nonzero_vec3("plane normal");
+    // Scaling n and D together leaves the plane unchanged; store it with a unit normal.
+    const double len = length(n);
+    return std::make_shared<const Plane>(Plane{n / len, d / len});
+}
+
+bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
+    const auto t = static_cast<const Plane*>(shape)->distance(ray, range);
+    if (!t) return false;
+    hit = {*t, 0};
+    return true;
+}
+
+Vec3 normal(const void* shape, const Vec3&, const Hit&) {
+    return static_cast<const Plane*>(shape)->normal;
+}
+
+Bounds bounds(const void*) { return Bounds::infinite(); }
+
+bool inside(const void* shape, const Vec3& point) {
+    const auto& p = *static_cast<const Plane*>(shape);
+    return dot(p.normal, point) < p.offset;
+}
+
+}  // namespace rt::plane

@@ -1,0 +1,49 @@
+// The functions each primitive's source file provides, for the table in table.cpp.
+// Each namespace is one primitive; its data structure stays private to its own file.
+#pragma once
+
+#include "rt/primitive.h"
+
+namespace rt::sphere {
+ReadShapeFn read;
+IntersectFn intersect;
+NormalFn normal;
+BoundsFn bounds;
+InsideFn inside;
+}  // namespace rt::sphere
+
+namespace rt::plane {
+ReadShapeFn read;
+IntersectFn intersect;
+NormalFn normal;
+BoundsFn bounds;
+InsideFn inside;
+}  // namespace rt::plane
+
+namespace rt::disk {
+ReadShapeFn read;
+IntersectFn intersect;
+NormalFn normal;
+BoundsFn bounds;
+}  // namespace rt::disk
+
+namespace rt::annulus {
+ReadShapeFn read;
+IntersectFn intersect;
+NormalFn normal;
+BoundsFn bounds;
+}  // namespace rt::annulus
+
+namespace rt::triangle {
+ReadShapeFn read;
+IntersectFn intersect;
+NormalFn normal;
+BoundsFn bounds;
+}  // namespace rt::triangle
+
+namespace rt::parallelogram {
+ReadShapeFn read;
+IntersectFn intersect;
+NormalFn normal;
+BoundsFn bounds;
+}  // namespace rt::parallelogram

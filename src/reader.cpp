@@ -1,0 +1,252 @@
+#include "rt/reader.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+
+#include "rt/error.h"
+
+namespace rt {
+
+namespace {
+
+// IDs the reader handles itself rather than through a table.
+constexpr long kViewerId = 102;
+constexpr long kAmbientLightId = 103;
+constexpr long kDefaultSurfaceId = 105;
+constexpr long kUseDefaultSurfaceId = 106;
+
+// What an ID is, for messages that say what was found instead of what was expected.
+std::string describe_id(long id) {
+    if (id == kViewerId) return "102 (viewer)";
+    if (id == kAmbientLightId) return "103 (ambient light)";
+    if (id == kDefaultSurfaceId) return "105 (default surface)";
+    if (id == kUseDefaultSurfaceId) return "106 (use default surface)";
+    const int small = static_cast<int>(id);
+    if (const PrimitiveType* p = find_primitive_type(small))
+        return std::to_string(id) + " (" + p->name + ")";
+    if (const SurfaceType* s = find_surface_type(small))
+        return std::to_string(id) + " (" + s->name + ")";
+    if (const LightType* l = find_light_type(small))
+        return std::to_string(id) + " (" + l->name + ")";
+    return std::to_string(id);
+}
+
+}  // namespace
+
+std::string format_number(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", value);
+    return text;
+}
+
+SceneReader::SceneReader(std::istream& in, std::string name, std::filesystem::path base_dir)
+    : lexer_(in, std::move(name)), base_dir_(std::move(base_dir)) {}
+
+void SceneReader::fail(Location where, std::string_view message) const {
+    lexer_.fail(where, message);
+}
+
+std::filesystem::path SceneReader::resolve(const std::string& path) const {
+    const std::filesystem::path p(path);
+    return p.is_absolute() || base_dir_.empty() ? p : base_dir_ / p;
+}
+
+SceneReader::Nest::Nest(SceneReader& reader, Location where) : reader_(reader) {
+    if (reader_.depth_ >= kMaxNesting)
+        reader_.fail(where, "objects nested more than " + std::to_string(kMaxNesting) +
+                                " deep (affine, checker and image-mapped objects count)");
+    ++reader_.depth_;
+}
+
+double SceneReader::number(std::string_view what) {
+    const Token token = lexer_.next();
+    if (token.at_end())
+        fail(token.where, "unexpected end of file: expected " + std::string(what));
+    if (token.quoted)
+        fail(token.where, "expected " + std::string(what) + " (a number), got a quoted string");
+    const char* begin = token.text.c_str();
+    char* end = nullptr;
+    errno = 0;
+    const double value = std::strtod(begin, &end);
+    if (end == begin || *end != '\0')
+        fail(token.where,
+             "expected " + std::string(what) + " (a number), got '" + token.text + "'");
+    if (!std::isfinite(value))
+        fail(token.where, std::string(what) + " must be a finite number, got '" + token.text + "'");
+    return value;
+}
+
+double SceneReader::positive(std::string_view what) {
+    const Location where = next_location();
+    const double value = number(what);
+    if (!(value > 0)) fail(where, std::string(what) + " must be > 0, got " + format_number(value));
+    return value;
+}
+
+double SceneReader::non_negative(std::string_view what) {
+    const Location where = next_location();
+    const double value = number(what);
+    if (!(value >= 0))
+        fail(where, std::string(what) + " must be >= 0, got " + format_number(value));
+    return value;
+}
+
+Vec3 SceneReader::vec3(std::string_view what) {
+    const double x = number(what);
+    const double y = number(what);
+    const double z = number(what);
+    return {x, y, z};
+}
+
+Vec3 SceneReader::nonzero_vec3(std::string_view what) {
+    const Location where = next_location();
+    const Vec3 v = vec3(what);
+    // Each component is finite, but the squared length can still overflow or underflow.
+    const double len = length(v);
+    if (!(len > 0) || !std::isfinite(len))
+        fail(where, std::string(what) + " must have a non-zero, finite length");
+    return v;
+}
+
+long SceneReader::whole(std::string_view what, long min, long max) {
+    const Location where = next_location();
+    const double value = number(what);
+    if (value != std::floor(value))
+        fail(where, std::string(what) + " must be a whole number, got " + format_number(value));
+    if (value < static_cast<double>(min) || value > static_cast<double>(max))
+        fail(where, std::string(what) + " must be between " + std::to_string(min) + " and " +
+                        std::to_string(max) + ", got " + format_number(value));
+    return static_cast<long>(value);
+}
+
+long SceneReader::id(std::string_view what) {
+    const Location where = next_location();
+    const double value = number(what);
+    if (value != std::floor(value) || std::fabs(value) > 1e9)
+        fail(where, std::string(what) + " must be a whole number, got " + format_number(value));
+    return static_cast<long>(value);
+}
+
+std::string SceneReader::path(std::string_view what) {
+    Token token = lexer_.next();
+    if (token.at_end())
+        fail(token.where, "unexpected end of file: expected " + std::string(what));
+    if (token.text.empty()) fail(token.where, std::string(what) + " must not be empty");
+    return std::move(token.text);
+}
+
+Shape SceneReader::shape(std::string_view what) {
+    const Location where = next_location();
+    const Nest nest(*this, where);
+    const long type_id = id(std::string(what) + " ID");
+    const PrimitiveType* type = find_primitive_type(static_cast<int>(type_id));
+    if (type == nullptr)
+        fail(where, "expected " + std::string(what) + " ID (a primitive, 1-99), got " +
+                        describe_id(type_id));
+    return {type, type->read(*this)};
+}
+
+SurfacePtr SceneReader::surface() {
+    const Location where = next_location();
+    const Nest nest(*this, where);
+    const long type_id = id("surface ID");
+    if (type_id == kUseDefaultSurfaceId) {
+        if (!default_surface_)
+            fail(where, "106 (use default surface) but no default surface has been set with 105");
+        return default_surface_;
+    }
+    const SurfaceType* type = find_surface_type(static_cast<int>(type_id));
+    if (type == nullptr) {
+        std::string ids;
+        for (const SurfaceType& row : surface_types()) ids += std::to_string(row.id) + ", ";
+        fail(where, "expected a surface ID (" + ids + "or 106), got " + describe_id(type_id));
+    }
+    return std::make_shared<const Surface>(Surface{type, type->read(*this)});
+}
+
+Light SceneReader::light(std::string_view what) {
+    const Location where = next_location();
+    const Nest nest(*this, where);
+    const long type_id = id(std::string(what) + " ID");
+    const LightType* type = find_light_type(static_cast<int>(type_id));
+    if (type == nullptr)
+        fail(where, "expected " + std::string(what) + " ID (a light with a position), got " +
+                        describe_id(type_id));
+    return {type, type->read(*this)};
+}
+
+Viewer SceneReader::read_viewer() {
+    Viewer v;
+    v.eye = vec3("viewer eye position");
+    const Location look_where = next_location();
+    v.look_at = vec3("viewer look-at point");
+    if (!(length(v.look_at - v.eye) > 0))
+        fail(look_where, "viewer look-at point must differ from the eye position");
+    v.x = nonzero_vec3("viewer x vector");
+    v.y = nonzero_vec3("viewer y vector");
+    const Location res_where = next_location();
+    v.xres = static_cast<int>(whole("viewer x resolution", 1, kMaxResolution));
+    v.yres = static_cast<int>(whole("viewer y resolution", 1, kMaxResolution));
+    if (static_cast<long>(v.xres) * v.yres > kMaxPixels)
+        fail(res_where, "viewer resolution " + std::to_string(v.xres) + "x" +
+                            std::to_string(v.yres) + " exceeds the limit of " +
+                            std::to_string(kMaxPixels) + " pixels");
+    return v;
+}
+
+void SceneReader::read_top_level_object(Scene& scene, bool& have_viewer) {
+    const Location where = next_location();
+    const long type_id = id("object ID");
+    const int small = static_cast<int>(type_id);
+    if (const PrimitiveType* type = find_primitive_type(small)) {
+        Object object;
+        object.shape = {type, type->read(*this)};
+        object.surface = surface();
+        scene.objects.push_back(std::move(object));
+    } else if (const LightType* light_type = find_light_type(small)) {
+        scene.lights.push_back({light_type, light_type->read(*this)});
+    } else if (type_id == kViewerId) {
+        if (have_viewer) fail(where, "a second viewer (102); a scene has exactly one");
+        scene.viewer = read_viewer();
+        have_viewer = true;
+    } else if (type_id == kAmbientLightId) {
+        const Vec3 intensity = vec3("ambient light intensity");
+        scene.ambient += Spectrum(intensity.x, intensity.y, intensity.z);
+    } else if (type_id == kDefaultSurfaceId) {
+        default_surface_ = surface();
+    } else if (find_surface_type(small) != nullptr || type_id == kUseDefaultSurfaceId) {
+        fail(where, "surface " + describe_id(type_id) +
+                        " found where an object is expected; a surface must follow a primitive");
+    } else {
+        fail(where, "unknown object ID " + std::to_string(type_id));
+    }
+}
+
+Scene SceneReader::read_scene() {
+    Scene scene;
+    bool have_viewer = false;
+    while (!lexer_.peek().at_end()) read_top_level_object(scene, have_viewer);
+    if (!have_viewer) fail(lexer_.peek().where, "no viewer (102) in the scene; one is required");
+    return scene;
+}
+
+Scene read_scene(std::istream& in, const std::string& name, const std::filesystem::path& base_dir) {
+    SceneReader reader(in, name, base_dir);
+    return reader.read_scene();
+}
+
+Scene read_scene_file(const std::string& path) {
+    if (path == "-") return read_scene(std::cin, "<stdin>", std::filesystem::current_path());
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw Error(path + ": is a directory, not a scene file");
+    std::ifstream file(path, std::ios::binary);
+    if (!file) throw Error(path + ": cannot open scene file");
+    return read_scene(file, path, std::filesystem::path(path).parent_path());
+}
+
+}  // namespace rt

@@ -1,0 +1,22 @@
+// The table of surface types (the IDs allowed in a primitive's surface slot, except 106,
+// which the reader resolves to the current default).
+#include "id_table.h"
+#include "surfaces/surfaces.h"
+
+namespace rt {
+
+namespace {
+
+constexpr std::array kSurfaceTypes{
+    SurfaceType{100, "simple surface", simple_surface::read, simple_surface::evaluate},
+};
+
+static_assert(strictly_sorted_by_id(kSurfaceTypes), "rows sorted by ID, each ID once");
+
+}  // namespace
+
+std::span<const SurfaceType> surface_types() { return kSurfaceTypes; }
+
+const SurfaceType* find_surface_type(int id) { return find_by_id(kSurfaceTypes, id); }
+
+}  // namespace rt

@@ -1,0 +1,152 @@
+#include "rt/trace.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <thread>
+#include <vector>
+
+namespace rt {
+
+double hit_tolerance(const Vec3& origin) { return kHitTolerance * (1 + max_abs_component(origin)); }
+
+Vec3 reflect(const Vec3& incoming, const Vec3& normal) {
+    return incoming - 2 * dot(incoming, normal) * normal;
+}
+
+std::optional<Vec3> refract(const Vec3& incoming, const Vec3& normal, double eta) {
+    const double cos_i = -dot(incoming, normal);
+    const double k = 1 - eta * eta * (1 - cos_i * cos_i);
+    if (k < 0) return std::nullopt;
+    return normalized(eta * incoming + (eta * cos_i - std::sqrt(k)) * normal);
+}
+
+std::optional<SceneHit> Tracer::closest_hit(const Ray& ray) const {
+    Interval range{hit_tolerance(ray.origin), kInfinity};
+    std::optional<SceneHit> best;
+    for (const Object& object : scene_.objects) {
+        Hit hit;
+        if (object.shape.intersect(ray, range, hit)) {
+            best = SceneHit{&object, hit};
+            range.t_max = hit.t;  // later objects need only beat this
+        }
+    }
+    return best;
+}
+
+bool Tracer::blocked(const Ray& ray, double distance) const {
+    const Interval range{hit_tolerance(ray.origin), distance};
+    Hit hit;
+    return std::any_of(scene_.objects.begin(), scene_.objects.end(),
+                       [&](const Object& o) { return o.shape.intersect(ray, range, hit); });
+}
+
+Spectrum Tracer::direct_light(const Vec3& point, const Vec3& facing_normal,
+                              const Vec3& reflected, const Material& m, double ks) const {
+    Spectrum total(0.0);
+    for (const Light& light : scene_.lights) {
+        const int samples = light.sample_count();
+        for (int i = 0; i < samples; ++i) {
+            const LightSample s = light.sample(point, i);
+            const double facing = dot(facing_normal, s.direction);
+            if (!(facing > 0) || s.intensity.is_black()) continue;
+            if (options_.shadows && blocked({point, s.direction}, s.distance)) continue;
+            Spectrum term(0.0);
+            if (options_.diffuse) term += m.colour * (m.kd * facing);
+            const double highlight = dot(reflected, s.direction);
+            if (options_.specular && ks > 0 && highlight > 0)
+                term += Spectrum(ks * std::pow(highlight, m.ke));
+            total += s.intensity * term;
+        }
+    }
+    return total;
+}
+
+Spectrum Tracer::trace(const Ray& ray, int depth, double weight, double ior) const {
+    const auto found = closest_hit(ray);
+    // A ray that escapes brings back the ambient intensity.
+    if (!found) return scene_.ambient;
+
+    const Object& object = *found->object;
+    const Vec3 point = ray.at(found->hit.t);
+    const Vec3 outward = object.shape.normal(point, found->hit);
+    const bool leaving = dot(ray.direction, outward) > 0;
+    const Vec3 facing = leaving ? -outward : outward;  // d in the Phong model
+    const Material m = object.surface->at(point);
+    double ks = m.ks;
+    Spectrum result(0.0);
+
+    // Transmission comes first: on total internal reflection kt joins the reflection weight.
+    if (m.kt > 0 && options_.refraction) {
+        const double next_ior = leaving ? 1.0 : m.ior;
+        if (const auto refracted = refract(ray.direction, facing, ior / next_ior)) {
+            if (may_trace(depth + 1, weight * m.kt))
+                result += m.kt * trace({point, *refracted}, depth + 1, weight * m.kt, next_ior);
+        } else {
+            ks += m.kt;
+        }
+    }
+
+    if (options_.ambient) result += scene_.ambient * m.colour * m.kd;
+    const Vec3 reflected = reflect(ray.direction, facing);
+    if (options_.diffuse || options_.specular)
+        result += direct_light(point, facing, reflected, m, ks);
+    if (ks > 0 && options_.reflection && may_trace(depth + 1, weight * ks))
+        result += ks * trace({point, reflected}, depth + 1, weight * ks, ior);
+    return result;
+}
+
+Spectrum Tracer::shade_primary(const Ray& ray) const {
+    if (options_.mode == RenderMode::trace) return trace(ray);
+    const auto found = closest_hit(ray);
+    if (!found) return Spectrum(0.0);
+    const Vec3 point = ray.at(found->hit.t);
+    switch (options_.mode) {
+        case RenderMode::depth:
+            return Spectrum(std::min(1.0, 1 / found->hit.t));
+        case RenderMode::colour:
+            return found->object->surface->at(point).colour;
+        case RenderMode::normal: {
+            const Vec3 n = found->object->shape.normal(point, found->hit);
+            return Spectrum(std::fabs(dot(n, ray.direction)));
+        }
+        case RenderMode::trace:
+            break;
+    }
+    return trace(ray);
+}
+
+Spectrum Tracer::pixel(int x, int y) const {
+    const int n = options_.samples;
+    if (n <= 1) return shade_primary(scene_.viewer.primary_ray(x, y));
+    // Samples on a regular n x n grid from the pixel's corner, so that one sample per pixel
+    // is exactly the original's ray.
+    Spectrum sum(0.0);
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i)
+            sum += shade_primary(
+                scene_.viewer.primary_ray(x + static_cast<double>(i) / n, y + static_cast<double>(j) / n));
+    return sum * (1.0 / (n * n));
+}
+
+Raster render(const Scene& scene, const RenderOptions& options) {
+    const Viewer& v = scene.viewer;
+    Raster raster(v.xres, v.yres);
+    const Tracer tracer(scene, options);
+    std::atomic<int> next_row{0};
+    auto work = [&] {
+        for (int y = next_row++; y < v.yres; y = next_row++)
+            for (int x = 0; x < v.xres; ++x) raster.set(x, y, tracer.pixel(x, y));
+    };
+    int threads = options.threads > 0 ? options.threads
+                                      : static_cast<int>(std::thread::hardware_concurrency());
+    threads = std::clamp(threads, 1, v.yres);
+    {
+        std::vector<std::jthread> pool;
+        for (int i = 1; i < threads; ++i) pool.emplace_back(work);
+        work();
+    }  // every worker has joined here
+    return raster;
+}
+
+}  // namespace rt
