@@ -53,7 +53,7 @@ private:
     }
 
     const Scene& scene_;
-    const RenderOptions& options_;
+    RenderOptions options_;  // a copy: small, and safe when built from a temporary
 };
 
 // Renders every pixel of the scene's viewer. Rows are shared among threads, and each pixel
