@@ -1,0 +1,153 @@
+// The command line as users call it: options, exit statuses, stdin and stdout, and that a
+// failed run never touches an existing output file.
+#include "check.h"
+#include "cli_util.h"
+#include "rt/cli.h"
+
+using namespace rt_test;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kScene =
+    "102 0 0 5 0 0 0 1 0 0 0 1 0 8 6\n"
+    "101 2 3 4 20 20 20\n103 .1 .1 .1\n"
+    "1 1 0 0 0 100 1 .5 .25 .5 10 .8 0 1\n";
+
+constexpr const char* kKeep = "previous image, must survive";
+
+}  // namespace
+
+TEST(renders_a_file_to_a_ppm) {
+    const fs::path dir = work_dir("render");
+    write_file(dir / "scene.in", kScene);
+    const RunResult r = run_rt(dir, "-d 7 scene.in -o out.ppm");
+    CHECK_EQ(r.status, 0);
+    CHECK_EQ(r.err, std::string());
+    const std::string image = read_file(dir / "out.ppm");
+    CHECK_EQ(image.substr(0, 11), std::string("P6\n8 6\n255\n"));
+    CHECK_EQ(image.size(), 11u + 8 * 6 * 3);
+    // No temporary file is left behind.
+    int files = 0;
+    for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir)) ++files;
+    CHECK_EQ(files, 5);  // scene.in, out.ppm, rt.out, rt.err, rt.status
+}
+
+TEST(stdin_and_stdout) {
+    const fs::path dir = work_dir("pipes");
+    write_file(dir / "scene.in", kScene);
+    CHECK_EQ(run_rt(dir, "scene.in -o file.ppm").status, 0);
+    const std::string from_file = read_file(dir / "file.ppm");
+    RunResult r = run_rt(dir, "< scene.in");  // no scene argument: stdin; no -o: stdout
+    CHECK_EQ(r.status, 0);
+    CHECK(r.out == from_file);
+    r = run_rt(dir, "- -o - < scene.in");
+    CHECK(r.out == from_file);
+    CHECK(run_rt(dir, "-j 1 scene.in").out == run_rt(dir, "-j 3 scene.in").out);
+}
+
+TEST(read_only_prints_a_summary_and_renders_nothing) {
+    const fs::path dir = work_dir("read_only");
+    write_file(dir / "scene.in", kScene);
+    const RunResult r = run_rt(dir, "-r scene.in -o out.ppm");
+    CHECK_EQ(r.status, 0);
+    CHECK_EQ(r.out, std::string("scene.in: 1 objects, 1 lights, 8x6\n"));
+    CHECK(!fs::exists(dir / "out.ppm"));
+    CHECK_EQ(run_rt(dir, "-r < scene.in").out, std::string("<stdin>: 1 objects, 1 lights, 8x6\n"));
+}
+
+TEST(scene_errors_exit_1_and_keep_the_old_image) {
+    const fs::path dir = work_dir("errors");
+    const std::string bad[] = {
+        "102 0 0 5 0 0 0 1 0 0 0 1 0 8 6\n1 -1 0 0 0 100 1 1 1 0 1 1 0 1\n",
+        "102 0 0 5 0 0 0 1 0 0 0 1 0 8 6\n77\n",
+        "102 0 0 5 0 0 0 1 0 0 0 1 0 8 6\n1 1 0 0\n",
+        "1 1 0 0 0 100 1 1 1 0 1 1 0 1\n",
+        "102 0 0 5 0 0 0 1 0 0 0 1 0 100000 100000\n",
+    };
+    const std::string where[] = {"bad.in:2:3: sphere radius must be > 0, got -1",
+                                 "bad.in:2:1: unknown object ID 77",
+                                 "bad.in:3:1: unexpected end of file: expected sphere centre",
+                                 "bad.in:2:1: no viewer (102) in the scene",
+                                 "bad.in:1:29: viewer x resolution must be between 1 and 16384"};
+    for (std::size_t i = 0; i < std::size(bad); ++i) {
+        write_file(dir / "bad.in", bad[i]);
+        write_file(dir / "out.ppm", kKeep);
+        const RunResult r = run_rt(dir, "bad.in -o out.ppm");
+        CHECK_EQ(r.status, 1);
+        CHECK_CONTAINS(r.err, where[i]);
+        CHECK_EQ(read_file(dir / "out.ppm"), std::string(kKeep));
+        CHECK_EQ(r.out, std::string());
+    }
+    write_file(dir / "bad.in", bad[0]);
+    CHECK_CONTAINS(run_rt(dir, "- < bad.in").err, "<stdin>:2:3: sphere radius must be > 0");
+}
+
+TEST(io_errors_exit_1) {
+    const fs::path dir = work_dir("io");
+    write_file(dir / "scene.in", kScene);
+    RunResult r = run_rt(dir, "missing.in -o out.ppm");
+    CHECK_EQ(r.status, 1);
+    CHECK_CONTAINS(r.err, "missing.in: cannot open scene file");
+    CHECK(!fs::exists(dir / "out.ppm"));
+    r = run_rt(dir, "scene.in -o no/such/dir/out.ppm");
+    CHECK_EQ(r.status, 1);
+    CHECK_CONTAINS(r.err, "no/such/dir/out.ppm: cannot write the image");
+    fs::create_directory(dir / "adir");
+    r = run_rt(dir, "scene.in -o adir");
+    CHECK_EQ(r.status, 1);
+    CHECK_CONTAINS(r.err, "adir: cannot write the image: it is a directory");
+    r = run_rt(dir, "adir");
+    CHECK_EQ(r.status, 1);
+    CHECK_CONTAINS(r.err, "adir: is a directory");
+}
+
+TEST(usage_errors_exit_2) {
+    const fs::path dir = work_dir("usage");
+    write_file(dir / "scene.in", kScene);
+    const std::string bad[] = {"-x scene.in",  "-d", "-d abc scene.in", "-d -1 scene.in",
+                               "-w x scene.in", "-m fancy scene.in", "a.in b.in",
+                               "--no-shadows=1 scene.in", "-s 0 scene.in", "-j 0 scene.in"};
+    for (const std::string& args : bad) {
+        write_file(dir / "out.ppm", kKeep);
+        const RunResult r = run_rt(dir, args + " -o out.ppm");
+        CHECK_EQ(r.status, 2);
+        CHECK_CONTAINS(r.err, "rt: ");
+        CHECK_CONTAINS(r.err, "Try 'rt --help'");
+        CHECK_EQ(read_file(dir / "out.ppm"), std::string(kKeep));
+    }
+}
+
+TEST(help_and_version) {
+    const fs::path dir = work_dir("help");
+    RunResult r = run_rt(dir, "--help");
+    CHECK_EQ(r.status, 0);
+    CHECK_CONTAINS(r.out, "usage: rt [options] [scene]");
+    CHECK_CONTAINS(r.out, "--no-refraction");
+    r = run_rt(dir, "--version");
+    CHECK_EQ(r.status, 0);
+    CHECK_CONTAINS(r.out, "rt " RT_VERSION);
+}
+
+TEST(parse_command_line_values) {
+    const rt::CommandLine cl = rt::parse_command_line(
+        {"-d", "3", "-w0.5", "--mode=color", "-o", "x.ppm", "--no-shadows", "--no-ambient",
+         "--threads", "4", "-s", "2", "in.scene"});
+    CHECK_EQ(cl.render.max_depth, 3);
+    CHECK_EQ(cl.render.min_weight, 0.5);
+    CHECK(cl.render.mode == rt::RenderMode::colour);
+    CHECK_EQ(cl.output, std::string("x.ppm"));
+    CHECK_EQ(cl.input, std::string("in.scene"));
+    CHECK(!cl.render.shadows && !cl.render.ambient && cl.render.diffuse);
+    CHECK_EQ(cl.render.threads, 4);
+    CHECK_EQ(cl.render.samples, 2);
+    const rt::CommandLine defaults = rt::parse_command_line({});
+    CHECK_EQ(defaults.render.max_depth, 7);
+    CHECK_EQ(defaults.render.min_weight, 0.01);
+    CHECK_EQ(defaults.input, std::string("-"));
+    CHECK_EQ(defaults.output, std::string("-"));
+    CHECK(rt::parse_command_line({"-m", "trace"}).render.mode == rt::RenderMode::trace);
+    CHECK(rt::parse_command_line({"-m", "depth"}).render.mode == rt::RenderMode::depth);
+    CHECK(rt::parse_command_line({"-m", "colour"}).render.mode == rt::RenderMode::colour);
+    CHECK(rt::parse_command_line({"-mnormal"}).render.mode == rt::RenderMode::normal);
+}
