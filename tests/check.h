@@ -24,6 +24,8 @@ struct TestCase {
 std::vector<TestCase>& registry();
 void record_failure(const char* file, int line, const std::string& message);
 int failure_count();
+// The test program's command-line arguments (after its name).
+std::vector<std::string>& arguments();
 
 struct Registrar {
     Registrar(const char* name, std::function<void()> body) {

@@ -20,9 +20,15 @@ void record_failure(const char* file, int line, const std::string& message) {
 
 int failure_count() { return failures; }
 
+std::vector<std::string>& arguments() {
+    static std::vector<std::string> args;
+    return args;
+}
+
 }  // namespace rt_test
 
-int main() {
+int main(int argc, char** argv) {
+    rt_test::arguments().assign(argv + 1, argv + argc);
     int failed_tests = 0;
     for (const rt_test::TestCase& test : rt_test::registry()) {
         const int before = rt_test::failure_count();
