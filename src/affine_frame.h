@@ -20,12 +20,14 @@ class SceneReader;
 inline constexpr double kSingularFrameTolerance = 1e-12;
 
 struct AffineFrame {
-    Vec3 origin;          // O
-    Vec3 x, y, z;         // the columns of F: the local axes as they appear in the world
+    Vec3 origin;            // O
+    Vec3 x, y, z;           // the columns of F: the local axes as they appear in the world
     Vec3 row0, row1, row2;  // the rows of M = F^-1
 
     // Local from world.
-    Vec3 to_local_direction(const Vec3& d) const { return {dot(row0, d), dot(row1, d), dot(row2, d)}; }
+    Vec3 to_local_direction(const Vec3& d) const {
+        return {dot(row0, d), dot(row1, d), dot(row2, d)};
+    }
     Vec3 to_local_point(const Vec3& p) const { return to_local_direction(p - origin); }
     // World from local.
     Vec3 to_world_direction(const Vec3& d) const { return d.x * x + d.y * y + d.z * z; }

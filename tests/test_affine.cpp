@@ -105,7 +105,9 @@ std::string affine_prefix(const Vec3& o, const Mat3& f) {
     return object_text(7, {o.x, o.y, o.z, x.x, x.y, x.z, y.x, y.y, y.z, z.x, z.y, z.z}) + " ";
 }
 
-std::string sphere_text(double r, const Vec3& c) { return object_text(1, {r, c.x, c.y, c.z}); }
+std::string sphere_text(double r, const Vec3& c) {
+    return object_text(1, {r, c.x, c.y, c.z});
+}
 
 // The smallest root beyond 1e-9 of a t^2 + b t + c = 0, solved without cancellation.
 std::optional<double> smallest_positive_root(double a, double b, double c) {
@@ -163,8 +165,8 @@ TEST(affine_sphere_is_the_ellipsoid_quadric) {
 
         // A third of the rays start inside; of the rest, most aim at the ellipsoid.
         const bool start_inside = i % 3 == 0;
-        const Vec3 origin = start_inside ? e.centre + f * (random.in_box(r * 0.55))
-                                         : e.centre + random.in_box(8);
+        const Vec3 origin =
+            start_inside ? e.centre + f * (random.in_box(r * 0.55)) : e.centre + random.in_box(8);
         const Vec3 aim = e.centre + f * random.in_box(r * 1.3);
         const Ray ray{origin, i % 4 ? normalized(aim - origin) : random.unit_vector()};
         const auto expected = e.distance(ray);
@@ -237,10 +239,9 @@ TEST(rotated_flat_primitives_match_the_rotated_primitive_written_directly) {
         const double d = random.uniform(-2, 2);
         const Vec3 wn = rot * n, wc = o + rot * c;
 
-        const Shape local_plane = parse_shape(affine_prefix(o, rot) +
-                                              object_text(2, {d, n.x, n.y, n.z}));
-        const Shape world_plane =
-            parse_shape(object_text(2, {d + dot(wn, o), wn.x, wn.y, wn.z}));
+        const Shape local_plane =
+            parse_shape(affine_prefix(o, rot) + object_text(2, {d, n.x, n.y, n.z}));
+        const Shape world_plane = parse_shape(object_text(2, {d + dot(wn, o), wn.x, wn.y, wn.z}));
         const Shape local_disk = parse_shape(
             affine_prefix(o, rot) + object_text(3, {c.x, c.y, c.z, n.x, n.y, n.z, radius}));
         const Shape world_disk =
@@ -305,7 +306,8 @@ TEST(nested_affines_compose) {
         // Local to world: O1 + F1 (O2 + F2 p) = (O1 + F1 O2) + (F1 F2) p.
         const Shape nested =
             parse_shape(affine_prefix(o1, f1) + affine_prefix(o2, f2) + sphere_text(r, c));
-        const Shape composed = parse_shape(affine_prefix(o1 + f1 * o2, f1 * f2) + sphere_text(r, c));
+        const Shape composed =
+            parse_shape(affine_prefix(o1 + f1 * o2, f1 * f2) + sphere_text(r, c));
         const Vec3 centre = o1 + f1 * (o2 + f2 * c);
         const Vec3 origin = centre + random.in_box(10);
         const Ray ray{origin, normalized(centre + (f1 * f2) * random.in_box(r) - origin)};

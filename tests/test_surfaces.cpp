@@ -1,5 +1,6 @@
 // Checker (107), image-mapped (108) and affine (111) surfaces, the PPM texture reader behind
 // 108, and the affine light (112), at points whose answers are known by hand.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -7,6 +8,7 @@
 #include <string>
 
 #include "rt/ppm.h"
+#include "rt/trace.h"
 #include "scene_util.h"
 
 using namespace rt;
@@ -51,7 +53,9 @@ const std::string kTexture4x2 =
     "0 0 15  1 0 15  2 0 15  3 0 15\n"
     "0 1 15  1 1 15  2 1 15  3 1 15\n";
 
-Spectrum texel(int x, int y) { return {x / 15.0, y / 15.0, 1.0}; }
+Spectrum texel(int x, int y) {
+    return {x / 15.0, y / 15.0, 1.0};
+}
 
 // An image-mapped surface on the texture at `path`, with O at the origin, U along x and V
 // along y, over a base surface with ks 0.5 and kt 0.
@@ -97,12 +101,19 @@ TEST(checker_cells_at_known_points) {
         {{-0.5, -0.5, 0.5}, true},    // (-1, -1, 0)
         {{-0.5, -0.5, -0.5}, false},  // (-1, -1, -1)
         {{-2.5, 0.5, 0.5}, false},    // (-3, 0, 0)
-        // Cell boundaries belong to the cell above them (floor).
+        // Cell boundaries belong to the cell above them (floor), and so do points within a
+        // millionth of a cell below them: a surface lying on a boundary, with its points
+        // rounded to either side, takes one cell rather than speckling.
         {{0, 0, 0}, true},
         {{1, 0, 0}, false},
-        {{-1e-12, 0, 0}, false},
+        {{-1e-12, 0, 0}, true},
+        {{0, -1e-9, 0}, true},
+        {{-1e-5, 0, 0}, false},
+        {{1 - 1e-12, 0, 0}, false},
+        {{1 - 1e-5, 0, 0}, true},
         {{-1, 0, 0}, false},
         {{-1, -1, 0}, true},
+        {{-1, -1 - 1e-12, 0}, true},
         {{1e15 + 1, 0.5, 0.5}, false},
     };
     for (const Case& c : cases) {
@@ -139,6 +150,34 @@ TEST(checker_cell_size_scales_cells) {
     CHECK_NEAR(s->at({2, 0, 0}).colour, kBlueColour, 0);
     CHECK_NEAR(s->at({-0.1, 0, 0}).colour, kBlueColour, 0);
     CHECK_NEAR(s->at({-2.1, 0, 0}).colour, kRedColour, 0);
+    // The nudge is relative to the cell: 1e-7 below a boundary of 2-unit cells is within it.
+    CHECK_NEAR(s->at({2 - 1e-7, 0, 0}).colour, kBlueColour, 0);
+    CHECK_NEAR(s->at({2 - 1e-5, 0, 0}).colour, kRedColour, 0);
+}
+
+TEST(checker_floor_on_a_boundary_does_not_speckle) {
+    // The plane y = 0, seen from above: every hit point, whatever its rounding, is in the
+    // row of cells above y = 0, so the colour depends on x and z only.
+    const Scene scene =
+        parse_scene(std::string(kTestViewer) + "2 0 0 1 0  107 1 " + kRed + " " + kBlue);
+    const Object& floor = scene.objects.at(0);
+    Random random(29);
+    int checked = 0;
+    for (int i = 0; i < 5000; ++i) {
+        const Vec3 eye{random.uniform(-3, 3), random.uniform(0.5, 5), random.uniform(-3, 3)};
+        const Vec3 target{random.uniform(-20, 20), 0, random.uniform(-20, 20)};
+        const Ray ray{eye, normalized(target - eye)};
+        Hit hit;
+        if (!floor.shape.intersect(ray, {1e-9, kInfinity}, hit)) continue;
+        ++checked;
+        const Vec3 p = ray.at(hit.t);
+        const bool even = static_cast<long>(std::floor(p.x) + std::floor(p.z)) % 2 == 0;
+        // Skip the x and z boundaries, where rounding legitimately decides.
+        if (std::fabs(p.x - std::round(p.x)) < 1e-6 || std::fabs(p.z - std::round(p.z)) < 1e-6)
+            continue;
+        CHECK_NEAR(floor.surface->at(p).colour, even ? kRedColour : kBlueColour, 0);
+    }
+    CHECK(checked > 4000);
 }
 
 TEST(checker_of_checkers_and_default_surfaces) {
@@ -147,8 +186,8 @@ TEST(checker_of_checkers_and_default_surfaces) {
     CHECK_NEAR(s->at({0.5, 0.5, 0.5}).colour, kRedColour, 0);
     CHECK_NEAR(s->at({1.5, 0.5, 0.5}).colour, kBlueColour, 0);
     CHECK_NEAR(s->at({2.5, 0.5, 0.5}).colour, kBlueColour, 0);
-    const Scene scene = parse_scene(std::string(kTestViewer) + "105 " + kRed +
-                                    "\n1 1 0 0 0  107 1 106 " + kBlue);
+    const Scene scene =
+        parse_scene(std::string(kTestViewer) + "105 " + kRed + "\n1 1 0 0 0  107 1 106 " + kBlue);
     CHECK_NEAR(scene.objects.at(0).surface->at({0.5, 0.5, 0.5}).colour, kRedColour, 0);
     CHECK_NEAR(scene.objects.at(0).surface->at({1.5, 0.5, 0.5}).colour, kBlueColour, 0);
 }
@@ -205,16 +244,16 @@ TEST(image_lookup_at_known_uv) {
         int x, y;  // the expected pixel, rows from the top
     };
     const Case cases[] = {
-        {0.1, 0.1, 0, 1},  // v = 0 is the bottom row
-        {0, 0, 0, 1},
-        {0.25, 0.5, 1, 0},  // pixel edges belong to the pixel above them
-        {0.74, 0.49, 2, 1},
-        {0.99, 0.99, 3, 0},
-        {1, 1, 0, 1},         // exactly 1 wraps to 0
-        {-0.1, 0.2, 3, 1},    // negative coordinates wrap
-        {-1e-20, -1e-20, 3, 0},  // wrap to just below 1: the last pixel, never out of range
-        {-3.3, 7.6, 2, 0},
-        {1e6 + 0.3, -1e6 - 0.3, 1, 0},
+        {0.1, 0.1, 0, 1},               // v = 0 is the bottom row
+        {0, 0, 0, 1},                   // the bottom-left corner
+        {0.25, 0.5, 1, 0},              // pixel edges belong to the pixel above them
+        {0.74, 0.49, 2, 1},             // just below the edges
+        {0.99, 0.99, 3, 0},             // the top-right pixel
+        {1, 1, 0, 1},                   // exactly 1 wraps to 0
+        {-0.1, 0.2, 3, 1},              // negative coordinates wrap
+        {-1e-20, -1e-20, 3, 0},         // wrap to just below 1: the last pixel, never out of range
+        {-3.3, 7.6, 2, 0},              // several periods away
+        {1e6 + 0.3, -1e6 - 0.3, 1, 0},  // a million periods away
     };
     for (const Case& c : cases) {
         const Material m = s->at({c.u, c.v, 5});  // z is along neither U nor V
@@ -235,9 +274,9 @@ TEST(image_frame_scales_and_moves_the_mapping) {
     // O (1, 1, 0); U (2, 0, 0): u = (x - 1) / 2; V (0, 0, 4): v = z / 4.
     const SurfacePtr s = parse_surface(image_surface(path, "1 1 0  2 0 0  0 0 4"));
     CHECK_NEAR(s->at({1, 9, 0}).colour, texel(0, 1), 1e-7);
-    CHECK_NEAR(s->at({2, 0, 0}).colour, texel(2, 1), 1e-7);   // u = 0.5
-    CHECK_NEAR(s->at({2.6, 0, 2}).colour, texel(3, 0), 1e-7); // u = 0.8, v = 0.5
-    CHECK_NEAR(s->at({0.6, 0, -1}).colour, texel(3, 0), 1e-7); // u = -0.2, v = -0.25
+    CHECK_NEAR(s->at({2, 0, 0}).colour, texel(2, 1), 1e-7);     // u = 0.5
+    CHECK_NEAR(s->at({2.6, 0, 2}).colour, texel(3, 0), 1e-7);   // u = 0.8, v = 0.5
+    CHECK_NEAR(s->at({0.6, 0, -1}).colour, texel(3, 0), 1e-7);  // u = -0.2, v = -0.25
     // U and V need not be perpendicular: each coordinate is its own projection.
     const SurfacePtr skew = parse_surface(image_surface(path, "0 0 0  1 0 0  1 1 0"));
     // u = 0.3; v = (0.3 + 0.2) / |V|^2 = 0.25, the bottom row.
@@ -336,7 +375,8 @@ TEST(affine_surface_takes_points_into_the_frame) {
     CHECK_NEAR(turned->at({-1, 3, 0}).colour, kBlueColour, 0);  // local (3, 1): (1, 0, 0)
     // An image through an affine surface: X = (0, 0, 2) maps local x (and so u) to world z / 2.
     const std::string path = write_work_file("affine.ppm", kTexture4x2);
-    const SurfacePtr mapped = parse_surface("111 0 0 0  0 0 2  0 1 0  1 0 0  " + image_surface(path));
+    const SurfacePtr mapped =
+        parse_surface("111 0 0 0  0 0 2  0 1 0  1 0 0  " + image_surface(path));
     CHECK_NEAR(mapped->at({0, 0.1, 1.1}).colour, texel(2, 1), 1e-7);
     CHECK_EQ(mapped->at({0, 0.1, 1.1}).ks, 0.5);
 }
@@ -363,7 +403,8 @@ TEST(affine_surface_errors) {
 TEST(affine_light_under_uniform_scale) {
     // O (1, 2, 3), F = 2 I; a 1/r^2 light at local (0, 1, 0), world (1, 4, 3). Lit at the
     // world point O, which is local (0, 0, 0): one local unit away, two world units.
-    const LightSample s = sample_light("112 1 2 3  2 0 0  0 2 0  0 0 2  101 0 1 0  1 2 3", {1, 2, 3});
+    const LightSample s =
+        sample_light("112 1 2 3  2 0 0  0 2 0  0 0 2  101 0 1 0  1 2 3", {1, 2, 3});
     CHECK_NEAR(s.direction, Vec3(0, 1, 0), 1e-15);
     CHECK_NEAR(s.distance, 2, 1e-15);
     CHECK_NEAR(s.intensity, Spectrum(1.0, 2.0, 3.0), 1e-15);  // falloff in local units: 1/1^2
@@ -378,12 +419,14 @@ TEST(affine_light_under_a_stretch) {
     // Y = (0, 3, 0): the light at local (0, 1, 0) is at world (0, 3, 0). The lit point
     // (2, 0, 0) is local (2, 0, 0), sqrt(5) local units from it: intensity 4 / 5. In the
     // world the light is along (-2, 3, 0), sqrt(13) away.
-    const LightSample s = sample_light("112 0 0 0  1 0 0  0 3 0  0 0 1  101 0 1 0  4 4 4", {2, 0, 0});
+    const LightSample s =
+        sample_light("112 0 0 0  1 0 0  0 3 0  0 0 1  101 0 1 0  4 4 4", {2, 0, 0});
     CHECK_NEAR(s.direction, normalized(Vec3(-2, 3, 0)), 1e-15);
     CHECK_NEAR(s.distance, std::sqrt(13.0), 1e-14);
     CHECK_NEAR(s.intensity, Spectrum(0.8), 1e-15);
     // Without falloff the intensity passes unchanged.
-    const LightSample flat = sample_light("112 0 0 0  1 0 0  0 3 0  0 0 1  104 0 1 0  4 4 4", {2, 0, 0});
+    const LightSample flat =
+        sample_light("112 0 0 0  1 0 0  0 3 0  0 0 1  104 0 1 0  4 4 4", {2, 0, 0});
     CHECK_NEAR(flat.direction, normalized(Vec3(-2, 3, 0)), 1e-15);
     CHECK_NEAR(flat.intensity, Spectrum(4.0), 0);
 }
@@ -397,8 +440,8 @@ TEST(affine_light_positions_on_random_frames) {
         if (std::fabs(dot(axes[0], cross(axes[1], axes[2]))) < 0.3) continue;
         const Vec3 o = random.in_box(3), p = random.in_box(2), x = random.in_box(5);
         const std::string text =
-            object_text(112, {o.x, o.y, o.z, axes[0].x, axes[0].y, axes[0].z, axes[1].x,
-                              axes[1].y, axes[1].z, axes[2].x, axes[2].y, axes[2].z}) +
+            object_text(112, {o.x, o.y, o.z, axes[0].x, axes[0].y, axes[0].z, axes[1].x, axes[1].y,
+                              axes[1].z, axes[2].x, axes[2].y, axes[2].z}) +
             " " + object_text(104, {p.x, p.y, p.z, 1, 1, 1});
         const Vec3 light = o + p.x * axes[0] + p.y * axes[1] + p.z * axes[2];
         const LightSample s = sample_light(text, x);
@@ -419,9 +462,33 @@ TEST(nested_affine_lights_compose) {
 }
 
 TEST(point_on_an_affine_light_receives_nothing) {
-    const LightSample s = sample_light("112 0 0 0  2 0 0  0 2 0  0 0 2  101 1 1 1  1 1 1", {2, 2, 2});
+    const LightSample s =
+        sample_light("112 0 0 0  2 0 0  0 2 0  0 0 2  101 1 1 1  1 1 1", {2, 2, 2});
     CHECK(s.intensity.is_black());
     CHECK(std::isfinite(s.direction.x) && std::isfinite(s.distance));
+}
+
+TEST(affine_light_renders_as_the_light_written_directly) {
+    // A frame that turns a quarter about y and doubles (scenes/affine-light.in): the light
+    // at local (1, 1, 0) is at world (0, 5, -2), and local distances are half the world's,
+    // so the 1/r^2 light of intensity 10 matches a direct one of intensity 40, pixel for pixel.
+    const std::string objects =
+        "102  0 2.5 6  0 0.6 0  0.5 0 0  0 0.5 0  24 24\n"
+        "2 0 0 1 0  100 0.8 0.8 0.8 0 1 0.8 0 1\n"
+        "1 0.6 0 0.6 0  100 0.2 0.8 0.3 0.2 30 0.8 0 1\n";
+    const Scene framed =
+        parse_scene(objects + "112 0 3 0  0 0 -2  0 2 0  2 0 0  101 1 1 0  10 10 10");
+    const Scene direct = parse_scene(objects + "101 0 5 -2  40 40 40");
+    RenderOptions options;
+    options.threads = 1;
+    const Raster a = render(framed, options), b = render(direct, options);
+    double brightest = 0;
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x) {
+            CHECK_NEAR(a.at(x, y), b.at(x, y), 1e-9);
+            brightest = std::max(brightest, a.at(x, y)[0]);
+        }
+    CHECK(brightest > 0.5);  // the light does reach the scene
 }
 
 TEST(affine_light_errors) {
@@ -431,8 +498,7 @@ TEST(affine_light_errors) {
     CHECK_CONTAINS(scene_error(v + "112 0 0 0  1 0 0  0 1 0  0 0 1  103 1 1 1"),
                    "test.in:2:33: expected affine inner light ID (a light with a position), got "
                    "103 (ambient light)");
-    CHECK_CONTAINS(scene_error(v + "112 0 0 0  1 0 0  0 1 0  0 0 1  1 1 0 0 0"),
-                   "got 1 (sphere)");
+    CHECK_CONTAINS(scene_error(v + "112 0 0 0  1 0 0  0 1 0  0 0 1  1 1 0 0 0"), "got 1 (sphere)");
     CHECK_CONTAINS(scene_error(v + "112 0 0 0  1 0 0  0 1 0  0 0 1"),
                    "unexpected end of file: expected affine inner light ID");
 }

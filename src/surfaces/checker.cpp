@@ -1,5 +1,6 @@
 // Checker surface (ID 107): cell size; surface A; surface B. Space is cut into cubes of the
-// cell size aligned with the axes, and neighbouring cubes alternate between A and B.
+// cell size aligned with the axes, and neighbouring cubes alternate between A and B: the cell
+// floor(x/s) + floor(y/s) + floor(z/s) is A when even, B when odd.
 #include <cmath>
 
 #include "rt/reader.h"
@@ -14,12 +15,23 @@ struct Checker {
     SurfacePtr odd;   // B: their neighbours
 };
 
+// Cell boundaries sit this fraction of a cell below the multiples of the cell size. A surface
+// lying exactly on a boundary (the floor y = 0, the commonest case) has hit points rounded to
+// either side of it, which would speckle between the two cells; the nudge gives them all the
+// cell above. POV-Ray's checker pattern does the same with its small tolerance.
+constexpr double kBoundaryNudge = 1e-6;
+
+// The index of the cell a coordinate falls in, along one axis.
+double cell_index(double coordinate, double cell_size) {
+    return std::floor(coordinate / cell_size + kBoundaryNudge);
+}
+
 bool is_odd_cell(double cell_size, const Vec3& point) {
     // The cell indices stay doubles: converting a huge or non-finite coordinate to an integer
     // type would overflow. Their sum is exact below 2^53, far beyond any pattern one can see.
     // fmod keeps the sign, so an odd negative sum gives -1, which is odd too.
-    const double cells = std::floor(point.x / cell_size) + std::floor(point.y / cell_size) +
-                         std::floor(point.z / cell_size);
+    const double cells = cell_index(point.x, cell_size) + cell_index(point.y, cell_size) +
+                         cell_index(point.z, cell_size);
     return std::fmod(cells, 2.0) != 0;
 }
 }  // namespace
