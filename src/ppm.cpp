@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <random>
 
 #include "rt/error.h"
@@ -74,6 +75,22 @@ void OutputFile::write(const Raster& raster) {
 namespace {
 
 // Reads PPM header fields: whitespace-separated decimal numbers with # comments.
+bool is_ppm_space(int c) {
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
+}
+
+// The bytes after the stream's position in a regular file, or nothing when the size is unknown
+// (a pipe, say).
+std::optional<std::size_t> bytes_left(std::istream& in, const std::filesystem::path& path) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
+    const auto size = std::filesystem::file_size(path, ec);
+    const auto position = in.tellg();
+    if (ec || position < 0) return std::nullopt;
+    const auto at = static_cast<std::uintmax_t>(position);
+    return static_cast<std::size_t>(size > at ? size - at : 0);
+}
+
 class PpmHeader {
 public:
     explicit PpmHeader(std::istream& in) : in_(in) {}
@@ -83,7 +100,7 @@ public:
         for (;;) {
             if (c == '#') {
                 while (c != EOF && c != '\n') c = in_.get();
-            } else if (c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f') {
+            } else if (is_ppm_space(c)) {
                 c = in_.get();
             } else {
                 break;
@@ -118,18 +135,31 @@ Image read_ppm(const std::filesystem::path& path) {
     if (!in || magic[0] != 'P' || (magic[1] != '6' && magic[1] != '3'))
         throw Error("not a PPM file (expected P6 or P3)");
     const bool binary = magic[1] == '6';
+    if (!is_ppm_space(in.peek())) throw Error("not a PPM file (expected P6 or P3)");
     PpmHeader header(in);
     Image image;
     const long width = header.number("width");
     const long height = header.number("height");
     const long maxval = header.number("maximum value");
     if (width < 1 || height < 1) throw Error("PPM image has no pixels");
+    // Each is at most 10^9, so the product cannot overflow a 64-bit long.
     if (width * height > kMaxImagePixels)
-        throw Error("PPM image larger than " + std::to_string(kMaxImagePixels) + " pixels");
+        throw Error("PPM image " + std::to_string(width) + "x" + std::to_string(height) +
+                    " is larger than " + std::to_string(kMaxImagePixels) + " pixels");
     if (maxval < 1 || maxval > 65535) throw Error("PPM maximum value must be 1 to 65535");
+    // The binary samples start after exactly one whitespace character.
+    if (binary && !is_ppm_space(header.last()))
+        throw Error("expected one whitespace character after the PPM maximum value");
     image.width = static_cast<int>(width);
     image.height = static_cast<int>(height);
     const std::size_t count = static_cast<std::size_t>(width * height) * 3;
+    // A header can claim far more pixels than the file holds: check against the file's size
+    // before allocating, so a short file costs nothing. Each binary sample takes one or two
+    // bytes; each text sample at least one (digits and separators take more).
+    const std::size_t bytes_per_sample = binary && maxval > 255 ? 2 : 1;
+    const auto remaining = bytes_left(in, path);
+    if (remaining && *remaining < count * bytes_per_sample)
+        throw Error("PPM pixel data ends early");
     image.values.resize(count);
     const double scale = 1.0 / static_cast<double>(maxval);
     for (std::size_t i = 0; i < count; ++i) {

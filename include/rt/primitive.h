@@ -32,6 +32,9 @@ using NormalFn = Vec3(const void* shape, const Vec3& point, const Hit& hit);
 using BoundsFn = Bounds(const void* shape);
 // True when a point lies inside a solid primitive.
 using InsideFn = bool(const void* shape, const Vec3& point);
+// Whether this instance encloses a volume, for the few types where that depends on the
+// parameters (an affine of a sphere does, an affine of a disk does not).
+using HasInsideFn = bool(const void* shape);
 
 struct PrimitiveType {
     int id;
@@ -41,6 +44,8 @@ struct PrimitiveType {
     NormalFn* normal;
     BoundsFn* bounds;
     InsideFn* inside;  // nullptr where the primitive encloses no volume (disk, triangle, ...)
+    // nullptr (the usual case) when every instance with an inside function has an inside.
+    HasInsideFn* has_inside = nullptr;
 };
 
 // A primitive type with its parameters: what the scene stores for each primitive.
@@ -55,7 +60,11 @@ struct Shape {
         return type->normal(data.get(), point, hit);
     }
     Bounds bounds() const { return type->bounds(data.get()); }
-    bool has_inside() const { return type->inside != nullptr; }
+    bool has_inside() const {
+        return type->inside != nullptr &&
+               (type->has_inside == nullptr || type->has_inside(data.get()));
+    }
+    // Only meaningful when has_inside().
     bool inside(const Vec3& point) const { return type->inside(data.get(), point); }
 };
 

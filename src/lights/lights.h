@@ -9,3 +9,9 @@ ReadLightFn read_without_falloff;
 SampleCountFn sample_count;
 SampleLightFn sample;
 }  // namespace rt::point_light
+
+namespace rt::affine_light {
+ReadLightFn read;
+SampleCountFn sample_count;
+SampleLightFn sample;
+}  // namespace rt::affine_light

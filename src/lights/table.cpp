@@ -12,6 +12,8 @@ constexpr std::array kLightTypes{
               point_light::sample},
     LightType{104, "point light without falloff", point_light::read_without_falloff,
               point_light::sample_count, point_light::sample},
+    LightType{112, "affine light", affine_light::read, affine_light::sample_count,
+              affine_light::sample},
 };
 
 static_assert(strictly_sorted_by_id(kLightTypes), "rows sorted by ID, each ID once");

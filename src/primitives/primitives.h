@@ -47,3 +47,12 @@ IntersectFn intersect;
 NormalFn normal;
 BoundsFn bounds;
 }  // namespace rt::parallelogram
+
+namespace rt::affine {
+ReadShapeFn read;
+IntersectFn intersect;
+NormalFn normal;
+BoundsFn bounds;
+InsideFn inside;
+HasInsideFn has_inside;
+}  // namespace rt::affine

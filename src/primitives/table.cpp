@@ -19,6 +19,9 @@ constexpr std::array kPrimitiveTypes{
                   triangle::bounds, nullptr},
     PrimitiveType{6, "parallelogram", parallelogram::read, parallelogram::intersect,
                   parallelogram::normal, parallelogram::bounds, nullptr},
+    // Solid exactly when its inner primitive is, so it says so per instance.
+    PrimitiveType{7, "affine", affine::read, affine::intersect, affine::normal, affine::bounds,
+                  affine::inside, affine::has_inside},
 };
 
 static_assert(strictly_sorted_by_id(kPrimitiveTypes), "rows sorted by ID, each ID once");

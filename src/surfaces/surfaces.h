@@ -13,3 +13,18 @@ namespace rt::simple_surface {
 ReadSurfaceFn read;
 EvaluateSurfaceFn evaluate;
 }  // namespace rt::simple_surface
+
+namespace rt::checker_surface {
+ReadSurfaceFn read;
+EvaluateSurfaceFn evaluate;
+}  // namespace rt::checker_surface
+
+namespace rt::image_surface {
+ReadSurfaceFn read;
+EvaluateSurfaceFn evaluate;
+}  // namespace rt::image_surface
+
+namespace rt::affine_surface {
+ReadSurfaceFn read;
+EvaluateSurfaceFn evaluate;
+}  // namespace rt::affine_surface

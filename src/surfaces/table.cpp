@@ -9,6 +9,9 @@ namespace {
 
 constexpr std::array kSurfaceTypes{
     SurfaceType{100, "simple surface", simple_surface::read, simple_surface::evaluate},
+    SurfaceType{107, "checker surface", checker_surface::read, checker_surface::evaluate},
+    SurfaceType{108, "image-mapped surface", image_surface::read, image_surface::evaluate},
+    SurfaceType{111, "affine surface", affine_surface::read, affine_surface::evaluate},
 };
 
 static_assert(strictly_sorted_by_id(kSurfaceTypes), "rows sorted by ID, each ID once");
