@@ -162,8 +162,15 @@ SurfacePtr SceneReader::surface() {
     const SurfaceType* type = find_surface_type(static_cast<int>(type_id));
     if (type == nullptr) {
         std::string ids;
-        for (const SurfaceType& row : surface_types()) ids += std::to_string(row.id) + ", ";
-        fail(where, "expected a surface ID (" + ids + "or 106), got " + describe_id(type_id));
+        bool listed_default = false;
+        for (const SurfaceType& row : surface_types()) {
+            if (!listed_default && row.id > kUseDefaultSurfaceId) {
+                ids += ", " + std::to_string(kUseDefaultSurfaceId);
+                listed_default = true;
+            }
+            ids += (ids.empty() ? "" : ", ") + std::to_string(row.id);
+        }
+        fail(where, "expected a surface ID (one of " + ids + "), got " + describe_id(type_id));
     }
     return std::make_shared<const Surface>(Surface{type, type->read(*this)});
 }

@@ -68,7 +68,7 @@ TEST(errors_name_line_column_and_expectation) {
         {"102 0 0 5 0 0 0 0 0 0 0 1 0 4 4", "test.in:1:17: viewer x vector must have a non-zero, finite length"},
         {kViewer + "2 0 0 0 0" + kSurface, "test.in:2:5: plane normal must have a non-zero, finite length"},
         {kViewer + "1 1 0 0 0 106", "test.in:2:11: 106 (use default surface) but no default surface has been set with 105"},
-        {kViewer + "1 1 0 0 0 101 1 1 1 1 1 1", "test.in:2:11: expected a surface ID (100, or 106), got 101 (point light)"},
+        {kViewer + "1 1 0 0 0 101 1 1 1 1 1 1", "test.in:2:11: expected a surface ID (one of 100, 106, 107, 108, 111), got 101 (point light)"},
         {kViewer + "1 1 0 0 0 100 1 1 -1 0 1 1 0 1", "test.in:2:15: surface colour components must be >= 0"},
         {kViewer + "1 1 0 0 0 100 1 1 1 0 1 1 0.5 0", "test.in:2:31: surface ior must be > 0 when kt > 0, got 0"},
         {kViewer + "1 1 0 0 0 100 1 1 1 -0.5 1 1 0 1", "test.in:2:21: surface ks (specular coefficient) must be >= 0, got -0.5"},
