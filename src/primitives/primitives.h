@@ -47,3 +47,17 @@ IntersectFn intersect;
 NormalFn normal;
 BoundsFn bounds;
 }  // namespace rt::parallelogram
+
+namespace rt::cone {
+ReadShapeFn read;
+IntersectFn intersect;
+NormalFn normal;
+BoundsFn bounds;
+}  // namespace rt::cone
+
+namespace rt::cylinder {
+ReadShapeFn read;
+IntersectFn intersect;
+NormalFn normal;
+BoundsFn bounds;
+}  // namespace rt::cylinder

@@ -19,6 +19,9 @@ constexpr std::array kPrimitiveTypes{
                   triangle::bounds, nullptr},
     PrimitiveType{6, "parallelogram", parallelogram::read, parallelogram::intersect,
                   parallelogram::normal, parallelogram::bounds, nullptr},
+    PrimitiveType{8, "cone", cone::read, cone::intersect, cone::normal, cone::bounds, nullptr},
+    PrimitiveType{9, "cylinder", cylinder::read, cylinder::intersect, cylinder::normal,
+                  cylinder::bounds, nullptr},
 };
 
 static_assert(strictly_sorted_by_id(kPrimitiveTypes), "rows sorted by ID, each ID once");
