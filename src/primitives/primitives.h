@@ -61,3 +61,10 @@ IntersectFn intersect;
 NormalFn normal;
 BoundsFn bounds;
 }  // namespace rt::cylinder
+
+namespace rt::polygon {
+ReadShapeFn read;
+IntersectFn intersect;
+NormalFn normal;
+BoundsFn bounds;
+}  // namespace rt::polygon

@@ -22,6 +22,8 @@ constexpr std::array kPrimitiveTypes{
     PrimitiveType{8, "cone", cone::read, cone::intersect, cone::normal, cone::bounds, nullptr},
     PrimitiveType{9, "cylinder", cylinder::read, cylinder::intersect, cylinder::normal,
                   cylinder::bounds, nullptr},
+    PrimitiveType{11, "polygon", polygon::read, polygon::intersect, polygon::normal,
+                  polygon::bounds, nullptr},
 };
 
 static_assert(strictly_sorted_by_id(kPrimitiveTypes), "rows sorted by ID, each ID once");
