@@ -68,3 +68,11 @@ IntersectFn intersect;
 NormalFn normal;
 BoundsFn bounds;
 }  // namespace rt::polygon
+
+namespace rt::box {
+ReadShapeFn read;
+IntersectFn intersect;
+NormalFn normal;
+BoundsFn bounds;
+InsideFn inside;
+}  // namespace rt::box

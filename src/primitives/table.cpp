@@ -24,6 +24,7 @@ constexpr std::array kPrimitiveTypes{
                   cylinder::bounds, nullptr},
     PrimitiveType{11, "polygon", polygon::read, polygon::intersect, polygon::normal,
                   polygon::bounds, nullptr},
+    PrimitiveType{12, "box", box::read, box::intersect, box::normal, box::bounds, box::inside},
 };
 
 static_assert(strictly_sorted_by_id(kPrimitiveTypes), "rows sorted by ID, each ID once");
