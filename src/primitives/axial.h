@@ -23,15 +23,17 @@ struct AxialExtent {
     bool keeps(double h) const { return h >= near && h <= far; }
 };
 
-// Reads start, finish, point and axis; `name` ("cone") prefixes each field in messages.
-inline AxialExtent read_axial_extent(SceneReader& reader, const std::string& name) {
+// Reads start, finish, point and axis. `name` ("cone") prefixes each field in messages and
+// `point_name` ("apex") names the point.
+inline AxialExtent read_axial_extent(SceneReader& reader, const std::string& name,
+                                     const std::string& point_name) {
     const double start = reader.number(name + " start");
     const Location finish_at = reader.next_location();
     const double finish = reader.number(name + " finish");
     if (!(start < finish))
         reader.fail(finish_at, name + " finish must be greater than start " + format_number(start) +
                                    ", got " + format_number(finish));
-    const Vec3 origin = reader.vec3(name + (name == "cone" ? " apex" : " point on axis"));
+    const Vec3 origin = reader.vec3(name + " " + point_name);
     const Location axis_at = reader.next_location();
     const Vec3 a = reader.nonzero_vec3(name + " axis");
     const double len = length(a);
@@ -45,7 +47,7 @@ inline AxialExtent read_axial_extent(SceneReader& reader, const std::string& nam
 
 // The roots of A t^2 + 2 B t + C = 0 in increasing order, given the discriminant B^2 - A C
 // (which each caller computes in a form without cancellation). The larger-magnitude root
-// comes first as q / A, the other as C / q, so neither cancels; when A is zero (a ray
+// is q / A and the other C / q, so neither cancels; when A is zero (a ray
 // parallel to a cone's side) q / A is infinite and C / q is the one real root. Roots that
 // do not exist come out infinite or NaN, which no Interval contains.
 struct QuadraticRoots {

@@ -12,9 +12,9 @@ namespace rt::cone {
 namespace {
 struct Cone {
     AxialExtent extent;
-    double cos2;  // alpha^2, the original's one precomputed value
-    double sin2;  // 1 - alpha^2
-    double tan;   // radius of the cone per unit height, for the bounds
+    double cos2;               // alpha^2, the original's one precomputed value
+    double sin2;               // 1 - alpha^2
+    double radius_per_height;  // tan(half-angle), for the bounds
 };
 }  // namespace
 
@@ -24,10 +24,10 @@ ShapeData read(SceneReader& reader) {
     if (!(alpha > 0 && alpha < 1))
         reader.fail(alpha_at, "cone alpha (cos of the half-angle) must be > 0 and < 1, got " +
                                   format_number(alpha));
-    const AxialExtent extent = read_axial_extent(reader, "cone");
-    const double sin = std::sqrt((1 - alpha) * (1 + alpha));
-    return std::make_shared<const Cone>(
-        Cone{extent, alpha * alpha, (1 - alpha) * (1 + alpha), sin / alpha});
+    const AxialExtent extent = read_axial_extent(reader, "cone", "apex");
+    // 1 - alpha^2 as a product, exact enough even when alpha is close to 1.
+    const double sin2 = (1 - alpha) * (1 + alpha);
+    return std::make_shared<const Cone>(Cone{extent, alpha * alpha, sin2, std::sqrt(sin2) / alpha});
 }
 
 bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
@@ -77,8 +77,8 @@ Vec3 normal(const void* shape, const Vec3& point, const Hit&) {
 
 Bounds bounds(const void* shape) {
     const auto& k = *static_cast<const Cone*>(shape);
-    return axial_bounds(k.extent, std::fabs(k.extent.near) * k.tan,
-                        std::fabs(k.extent.far) * k.tan);
+    return axial_bounds(k.extent, std::fabs(k.extent.near) * k.radius_per_height,
+                        std::fabs(k.extent.far) * k.radius_per_height);
 }
 
 }  // namespace rt::cone

@@ -19,7 +19,7 @@ struct Cylinder {
 
 ShapeData read(SceneReader& reader) {
     const double radius = reader.positive("cylinder radius");
-    const AxialExtent extent = read_axial_extent(reader, "cylinder");
+    const AxialExtent extent = read_axial_extent(reader, "cylinder", "point on axis");
     return std::make_shared<const Cylinder>(Cylinder{extent, radius, radius * radius});
 }
 
