@@ -56,3 +56,32 @@ BoundsFn bounds;
 InsideFn inside;
 HasInsideFn has_inside;
 }  // namespace rt::affine
+
+namespace rt::cone {
+ReadShapeFn read;
+IntersectFn intersect;
+NormalFn normal;
+BoundsFn bounds;
+}  // namespace rt::cone
+
+namespace rt::cylinder {
+ReadShapeFn read;
+IntersectFn intersect;
+NormalFn normal;
+BoundsFn bounds;
+}  // namespace rt::cylinder
+
+namespace rt::polygon {
+ReadShapeFn read;
+IntersectFn intersect;
+NormalFn normal;
+BoundsFn bounds;
+}  // namespace rt::polygon
+
+namespace rt::box {
+ReadShapeFn read;
+IntersectFn intersect;
+NormalFn normal;
+BoundsFn bounds;
+InsideFn inside;
+}  // namespace rt::box

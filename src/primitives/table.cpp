@@ -22,6 +22,12 @@ constexpr std::array kPrimitiveTypes{
     // Solid exactly when its inner primitive is, so it says so per instance.
     PrimitiveType{7, "affine", affine::read, affine::intersect, affine::normal, affine::bounds,
                   affine::inside, affine::has_inside},
+    PrimitiveType{8, "cone", cone::read, cone::intersect, cone::normal, cone::bounds, nullptr},
+    PrimitiveType{9, "cylinder", cylinder::read, cylinder::intersect, cylinder::normal,
+                  cylinder::bounds, nullptr},
+    PrimitiveType{11, "polygon", polygon::read, polygon::intersect, polygon::normal,
+                  polygon::bounds, nullptr},
+    PrimitiveType{12, "box", box::read, box::intersect, box::normal, box::bounds, box::inside},
 };
 
 static_assert(strictly_sorted_by_id(kPrimitiveTypes), "rows sorted by ID, each ID once");

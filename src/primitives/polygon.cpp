@@ -1,0 +1,147 @@
+// Polygon (ID 11): n; then n vertices. A flat polygon, concave allowed, whose inside is
+// decided by the even-odd rule: a point is inside when a ray from it in the polygon's plane
+// crosses the boundary an odd number of times. Self-intersecting outlines are accepted and
+// the same rule defines them (the middle of a pentagram drawn with five vertices is outside).
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "primitives/planar.h"
+#include "primitives/primitives.h"
+#include "rt/reader.h"
+
+namespace rt::polygon {
+
+namespace {
+
+// The most vertices a polygon may have. Vertices are stored as they are read, so this is a
+// sanity limit rather than an allocation size: each ray tests every edge, and a polygon
+// this large belongs in a mesh.
+constexpr long kMaxVertices = 1'000'000;
+
+// A vertex may lie off the polygon's plane by this fraction of the polygon's size (the
+// diagonal of its bounding box). That admits vertices written with six significant digits
+// while refusing any bend that could show in an image.
+constexpr double kCoplanarTolerance = 1e-4;
+
+// The vertices span no plane when the farthest of them from the line through the two
+// farthest apart is closer to it than this fraction of their distance.
+constexpr double kCollinearTolerance = 1e-12;
+
+struct Point2 {
+    double u, v;
+};
+
+struct Polygon {
+    Plane plane;
+    int u_axis, v_axis;  // the two world axes the polygon is projected onto
+    std::vector<Point2> outline;
+    Bounds box;
+};
+
+// The axis (0, 1, 2 for x, y, z) of the largest component.
+int largest_axis(const Vec3& v) {
+    if (v.x >= v.y && v.x >= v.z) return 0;
+    return v.y >= v.z ? 1 : 2;
+}
+
+Point2 project(const Vec3& p, int u_axis, int v_axis) {
+    return {p[u_axis], p[v_axis]};
+}
+
+// The even-odd rule: count the edges that a ray from p along +u crosses. Each edge is taken
+// as half-open in v, so a ray through a vertex counts the two edges there once between them.
+bool even_odd_inside(const std::vector<Point2>& outline, Point2 p) {
+    bool inside = false;
+    const std::size_t n = outline.size();
+    for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+        const Point2& a = outline[i];
+        const Point2& b = outline[j];
+        if ((a.v > p.v) == (b.v > p.v)) continue;
+        const double crossing_u = a.u + (p.v - a.v) * (b.u - a.u) / (b.v - a.v);
+        if (p.u < crossing_u) inside = !inside;
+    }
+    return inside;
+}
+
+}  // namespace
+
+ShapeData read(SceneReader& reader) {
+    const long count = reader.whole("polygon vertex count", 3, kMaxVertices);
+    // Read one vertex at a time: the count alone never decides how much is allocated.
+    std::vector<Vec3> vertices;
+    std::vector<Location> places;
+    Bounds box;
+    for (long i = 0; i < count; ++i) {
+        places.push_back(reader.next_location());
+        vertices.push_back(reader.vec3("polygon vertex " + std::to_string(i)));
+        box.expand(vertices.back());
+    }
+
+    // The plane through the two vertices farthest apart along the box's longest side and
+    // the vertex farthest from the line through them: it holds for any outline, even one
+    // whose signed area is zero.
+    const Vec3 extent = box.max - box.min;
+    const int long_axis = largest_axis(extent);
+    std::size_t lo = 0, hi = 0;
+    for (std::size_t i = 1; i < vertices.size(); ++i) {
+        if (vertices[i][long_axis] < vertices[lo][long_axis]) lo = i;
+        if (vertices[i][long_axis] > vertices[hi][long_axis]) hi = i;
+    }
+    const Vec3 base = vertices[lo];
+    const Vec3 along = vertices[hi] - base;
+    Vec3 best_cross;
+    for (const Vec3& v : vertices) {
+        const Vec3 c = cross(along, v - base);
+        if (length_squared(c) > length_squared(best_cross)) best_cross = c;
+    }
+    // |along x (v - base)| is |along| times v's distance from the line.
+    const double along_length = length(along);
+    if (!(length(best_cross) > kCollinearTolerance * along_length * along_length))
+        reader.fail(places[0], "polygon vertices all lie on one line, so they span no plane");
+    Vec3 n = normalized(best_cross);
+    // Orient the normal as the outline winds (counter-clockwise seen from its tip) when the
+    // outline has a winding, by Newell's area vector.
+    Vec3 area;
+    for (std::size_t i = 0, j = vertices.size() - 1; i < vertices.size(); j = i++)
+        area += cross(vertices[j] - base, vertices[i] - base);
+    if (dot(area, n) < 0) n = -n;
+
+    const double size = length(extent);
+    const double offset = dot(n, base);
+    for (std::size_t i = 0; i < vertices.size(); ++i) {
+        const double off = std::fabs(dot(n, vertices[i]) - offset);
+        if (off > kCoplanarTolerance * size)
+            reader.fail(places[i], "polygon vertex " + std::to_string(i) +
+                                       " is not in the plane of the others: it is " +
+                                       format_number(off) + " away, more than " +
+                                       format_number(kCoplanarTolerance) +
+                                       " of the polygon's size " + format_number(size));
+    }
+
+    // Project onto the two axes the plane faces least, where the outline is largest.
+    const int drop = largest_axis({std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)});
+    Polygon polygon{{n, offset}, (drop + 1) % 3, (drop + 2) % 3, {}, box};
+    polygon.outline.reserve(vertices.size());
+    for (const Vec3& v : vertices)
+        polygon.outline.push_back(project(v, polygon.u_axis, polygon.v_axis));
+    return std::make_shared<const Polygon>(std::move(polygon));
+}
+
+bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
+    const auto& p = *static_cast<const Polygon*>(shape);
+    const auto t = p.plane.distance(ray, range);
+    if (!t || !even_odd_inside(p.outline, project(ray.at(*t), p.u_axis, p.v_axis))) return false;
+    hit = {*t, 0};
+    return true;
+}
+
+Vec3 normal(const void* shape, const Vec3&, const Hit&) {
+    return static_cast<const Polygon*>(shape)->plane.normal;
+}
+
+Bounds bounds(const void* shape) {
+    return static_cast<const Polygon*>(shape)->box;
+}
+
+}  // namespace rt::polygon
