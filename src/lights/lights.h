@@ -9,3 +9,18 @@ ReadLightFn read_without_falloff;
 SampleCountFn sample_count;
 SampleLightFn sample;
 }  // namespace rt::point_light
+
+namespace rt::spot_light {
+ReadLightFn read;
+SampleCountFn sample_count;
+SampleLightFn sample;
+}  // namespace rt::spot_light
+
+namespace rt::sphere_light {
+// The most samples a sphere light may ask for, so that no input allocates without bound;
+// 4096 samples already give soft shadows with errors well under one 8-bit level.
+inline constexpr long kMaxSamples = 4096;
+ReadLightFn read;
+SampleCountFn sample_count;
+SampleLightFn sample;
+}  // namespace rt::sphere_light
