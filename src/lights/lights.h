@@ -10,6 +10,22 @@ SampleCountFn sample_count;
 SampleLightFn sample;
 }  // namespace rt::point_light
 
+namespace rt::spot_light {
+ReadLightFn read;
+SampleCountFn sample_count;
+SampleLightFn sample;
+}  // namespace rt::spot_light
+
+namespace rt::sphere_light {
+// The most samples a sphere light may ask for, so that no input allocates without bound.
+// Already 1024 samples put the fraction of the light seen past an obstacle within about 1/255
+// (one 8-bit level) of its exact value.
+inline constexpr long kMaxSamples = 4096;
+ReadLightFn read;
+SampleCountFn sample_count;
+SampleLightFn sample;
+}  // namespace rt::sphere_light
+
 namespace rt::affine_light {
 ReadLightFn read;
 SampleCountFn sample_count;

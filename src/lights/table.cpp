@@ -12,6 +12,9 @@ constexpr std::array kLightTypes{
               point_light::sample},
     LightType{104, "point light without falloff", point_light::read_without_falloff,
               point_light::sample_count, point_light::sample},
+    LightType{109, "spot light", spot_light::read, spot_light::sample_count, spot_light::sample},
+    LightType{110, "sphere light", sphere_light::read, sphere_light::sample_count,
+              sphere_light::sample},
     LightType{112, "affine light", affine_light::read, affine_light::sample_count,
               affine_light::sample},
 };

@@ -24,7 +24,7 @@ ShapeData read(SceneReader& reader) {
     const double inner = reader.non_negative("annulus inner radius");
     if (!(inner < outer))
         reader.fail(inner_at, "annulus inner radius must be less than the outer radius " +
-                                  format_number(outer));
+                                  format_number(outer) + ", got " + format_number(inner));
     return std::make_shared<const Annulus>(
         Annulus{{n, dot(n, centre)}, centre, outer, outer * outer, inner * inner});
 }
