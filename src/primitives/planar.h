@@ -5,7 +5,7 @@
 #include <cmath>
 #include <optional>
 
-#include "rt/ray.h"
+#include "rt/primitive.h"
 
 namespace rt {
 
@@ -81,6 +81,33 @@ struct EdgePatch {
         const Vec3 x = ray.at(*t);
         return Point{*t, frame.alpha(x), frame.beta(x)};
     }
+};
+
+}  // namespace rt
+
+namespace rt {
+
+// The flat round shapes: a disk is a ring whose hole has radius 0.
+struct Ring {
+    Plane plane;
+    Vec3 centre;
+    double outer;
+    double outer_squared;
+    double inner_squared;
+
+    static Ring make(const Vec3& centre, const Vec3& unit_normal, double outer, double inner) {
+        return {{unit_normal, dot(unit_normal, centre)}, centre, outer, outer * outer,
+                inner * inner};
+    }
+    bool intersect(const Ray& ray, Interval range, Hit& hit) const {
+        const auto t = plane.distance(ray, range);
+        if (!t) return false;
+        const double r2 = length_squared(ray.at(*t) - centre);
+        if (r2 > outer_squared || r2 < inner_squared) return false;
+        hit = {*t, 0};
+        return true;
+    }
+    Bounds bounds() const { return disk_bounds(centre, plane.normal, outer); }
 };
 
 }  // namespace rt
