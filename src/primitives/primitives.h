@@ -47,3 +47,11 @@ IntersectFn intersect;
 NormalFn normal;
 BoundsFn bounds;
 }  // namespace rt::parallelogram
+
+namespace rt::torus {
+ReadShapeFn read;
+IntersectFn intersect;
+NormalFn normal;
+BoundsFn bounds;
+InsideFn inside;
+}  // namespace rt::torus

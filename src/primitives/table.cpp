@@ -19,6 +19,8 @@ constexpr std::array kPrimitiveTypes{
                   triangle::bounds, nullptr},
     PrimitiveType{6, "parallelogram", parallelogram::read, parallelogram::intersect,
                   parallelogram::normal, parallelogram::bounds, nullptr},
+    PrimitiveType{10, "torus", torus::read, torus::intersect, torus::normal, torus::bounds,
+                  torus::inside},
 };
 
 static_assert(strictly_sorted_by_id(kPrimitiveTypes), "rows sorted by ID, each ID once");
