@@ -88,7 +88,9 @@ void add_root(Roots& roots, double x) {
 }
 
 // |miss| as a fraction of scale, the size of the terms it came from.
-double relative(double miss, double scale) { return scale > 0 ? std::fabs(miss) / scale : 0; }
+double relative(double miss, double scale) {
+    return scale > 0 ? std::fabs(miss) / scale : 0;
+}
 
 // Newton's method on p from an estimate of a root, kept only while |p| keeps shrinking.
 double polish(const Polynomial& p, double x) {
@@ -167,7 +169,8 @@ void add_cubic_roots(const Polynomial& p, Roots& roots) {
         t = -std::copysign(2 * s * std::cos(std::acos(cos_3theta) / 3), half_q);
     } else {
         // Cardano, with the cube root of larger magnitude so that u - p3/u does not cancel.
-        const double u = -std::copysign(std::cbrt(std::fabs(half_q) + std::sqrt(discriminant)), half_q);
+        const double u =
+            -std::copysign(std::cbrt(std::fabs(half_q) + std::sqrt(discriminant)), half_q);
         t = u != 0 ? u - p3 / u : 0;
     }
     const double r = polish(p, t - third);
@@ -184,8 +187,8 @@ void add_cubic_roots(const Polynomial& p, Roots& roots) {
         const double q1_from_middle = (q0 - b) / r;
         const double miss_top = relative(q0 - r * q1_from_top - b,
                                          std::fabs(q0) + std::fabs(r * q1_from_top) + std::fabs(b));
-        const double miss_middle = relative(q1_from_middle - r - a,
-                                            std::fabs(q1_from_middle) + std::fabs(r) + std::fabs(a));
+        const double miss_middle = relative(
+            q1_from_middle - r - a, std::fabs(q1_from_middle) + std::fabs(r) + std::fabs(a));
         q1 = miss_middle < miss_top ? q1_from_middle : q1_from_top;
     }
     add_quadratic_factor(p, q1, q0, roots);

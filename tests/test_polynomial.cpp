@@ -301,7 +301,8 @@ TEST(random_multiple_roots) {
     int failed = 0;
     for (int i = 0; i < 3000 && failed <= 10; ++i) {
         KnownRoots known;
-        const double r = std::copysign(std::pow(10.0, random.uniform(-3, 3)), random.uniform() - 0.5);
+        const double r =
+            std::copysign(std::pow(10.0, random.uniform(-3, 3)), random.uniform() - 0.5);
         const int multiplicity = 2 + i % 3;
         known.real.assign(static_cast<std::size_t>(multiplicity), r);
         // The rest of the degree-4 polynomial: distinct real roots or a complex pair, at
@@ -316,8 +317,9 @@ TEST(random_multiple_roots) {
                 do {
                     s = r * random.uniform(-10, 10);
                 } while (std::fabs(s - r) < 0.1 * std::fabs(r) ||
-                         std::any_of(known.real.begin(), known.real.end(),
-                                     [&](double t) { return std::fabs(s - t) < 0.1 * std::fabs(r); }));
+                         std::any_of(known.real.begin(), known.real.end(), [&](double t) {
+                             return std::fabs(s - t) < 0.1 * std::fabs(r);
+                         }));
                 known.real.push_back(s);
             }
         }
