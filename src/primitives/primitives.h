@@ -71,6 +71,14 @@ NormalFn normal;
 BoundsFn bounds;
 }  // namespace rt::cylinder
 
+namespace rt::torus {
+ReadShapeFn read;
+IntersectFn intersect;
+NormalFn normal;
+BoundsFn bounds;
+InsideFn inside;
+}  // namespace rt::torus
+
 namespace rt::polygon {
 ReadShapeFn read;
 IntersectFn intersect;

@@ -25,6 +25,8 @@ constexpr std::array kPrimitiveTypes{
     PrimitiveType{8, "cone", cone::read, cone::intersect, cone::normal, cone::bounds, nullptr},
     PrimitiveType{9, "cylinder", cylinder::read, cylinder::intersect, cylinder::normal,
                   cylinder::bounds, nullptr},
+    PrimitiveType{10, "torus", torus::read, torus::intersect, torus::normal, torus::bounds,
+                  torus::inside},
     PrimitiveType{11, "polygon", polygon::read, polygon::intersect, polygon::normal,
                   polygon::bounds, nullptr},
     PrimitiveType{12, "box", box::read, box::intersect, box::normal, box::bounds, box::inside},
