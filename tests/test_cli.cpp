@@ -2,6 +2,7 @@
 // failed run never touches an existing output file.
 #include "check.h"
 #include "cli_util.h"
+#include "error_cases.h"
 #include "rt/cli.h"
 
 using namespace rt_test;
@@ -81,6 +82,18 @@ TEST(scene_errors_exit_1_and_keep_the_old_image) {
     }
     write_file(dir / "bad.in", bad[0]);
     CHECK_CONTAINS(run_rt(dir, "- < bad.in").err, "<stdin>:2:3: sphere radius must be > 0");
+}
+
+TEST(every_scene_error_exits_1_with_its_place_and_keeps_the_old_image) {
+    const fs::path dir = work_dir("all_errors");
+    for (const ErrorCase& c : scene_error_cases()) {
+        write_file(dir / "test.in", c.scene);
+        write_file(dir / "out.ppm", kKeep);
+        const RunResult r = run_rt(dir, "test.in -o out.ppm");
+        CHECK_EQ(r.status, 1);
+        CHECK_CONTAINS(r.err, c.message);
+        CHECK_EQ(read_file(dir / "out.ppm"), std::string(kKeep));
+    }
 }
 
 TEST(io_errors_exit_1) {

@@ -502,3 +502,25 @@ TEST(affine_light_errors) {
     CHECK_CONTAINS(scene_error(v + "112 0 0 0  1 0 0  0 1 0  0 0 1"),
                    "unexpected end of file: expected affine inner light ID");
 }
+
+TEST(every_surface_can_be_the_default) {
+    // 105 takes any surface, and 106 hands the same one to each primitive that asks.
+    const std::string path = write_work_file("default.ppm", kTexture4x2);
+    const std::string defaults[] = {
+        "107 1 " + kRed + " " + kBlue,
+        image_surface(path),
+        "111  0 0 0  2 0 0  0 2 0  0 0 2  107 1 " + kRed + " " + kBlue,
+    };
+    for (const std::string& surface : defaults) {
+        const Scene scene = parse_scene(std::string(kTestViewer) + "105 " + surface +
+                                        "\n1 1 0 0 0 106\n1 1 5 0 0 106\n");
+        CHECK(scene.objects.at(0).surface == scene.objects.at(1).surface);
+        const SurfacePtr direct = parse_surface(surface);
+        for (const Vec3& p : {Vec3(0.5, 0.5, 0.5), Vec3(1.5, 0.2, 0.7), Vec3(-0.3, 2.5, 1.1)})
+            CHECK_NEAR(scene.objects.at(1).surface->at(p).colour, direct->at(p).colour, 0);
+    }
+    // The affine surface's frame doubles the cells: (1.5, 0.2, 0.7) is in local cell (0,0,0).
+    const SurfacePtr affine = parse_surface(defaults[2]);
+    CHECK_NEAR(affine->at({1.5, 0.2, 0.7}).colour, kRedColour, 0);
+    CHECK_NEAR(affine->at({2.5, 0.2, 0.7}).colour, kBlueColour, 0);
+}
