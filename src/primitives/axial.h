@@ -60,6 +60,20 @@ inline QuadraticRoots solve_quadratic(double a, double b, double c, double discr
     return r1 < r2 ? QuadraticRoots{r1, r2} : QuadraticRoots{r2, r1};
 }
 
+// The nearer root that is in range and on the kept part of the surface. A root on the
+// clipped-away part does not hide the other: through the open end of a cone or cylinder its
+// far wall shows. w_along and d_along are the ray origin's and direction's components along
+// the axis, in the extent's units.
+inline bool nearest_kept_root(const QuadraticRoots& roots, Interval range,
+                              const AxialExtent& extent, double w_along, double d_along, Hit& hit) {
+    for (const double t : {roots.first, roots.second}) {
+        if (!range.contains(t) || !extent.keeps(w_along + t * d_along)) continue;
+        hit = {t, 0};
+        return true;
+    }
+    return false;
+}
+
 // The bounds of an axial surface: the box around its two end circles, whose radii are
 // given. Every circle between lies in the convex hull of the two, so the box holds it.
 inline Bounds axial_bounds(const AxialExtent& e, double near_radius, double far_radius) {

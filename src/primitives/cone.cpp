@@ -51,15 +51,8 @@ bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
     const double s = dot(cross(w, ray.direction), axis);
     const double discriminant = k.cos2 * (k.sin2 * length_squared(m) - k.cos2 * s * s);
     if (!(discriminant >= 0)) return false;
-    const auto roots = solve_quadratic(a, b, c, discriminant);
-    // A root on the clipped-away part does not hide the other: through the open mouth of a
-    // cone the far wall shows.
-    for (const double t : {roots.first, roots.second}) {
-        if (!range.contains(t) || !k.extent.keeps(w_along + t * d_along)) continue;
-        hit = {t, 0};
-        return true;
-    }
-    return false;
+    return nearest_kept_root(solve_quadratic(a, b, c, discriminant), range, k.extent, w_along,
+                             d_along, hit);
 }
 
 Vec3 normal(const void* shape, const Vec3& point, const Hit&) {

@@ -44,15 +44,8 @@ bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
     const double s = dot(cross(w, ray.direction), axis);
     const double discriminant = a * cyl.radius_squared - s * s;
     if (!(discriminant >= 0)) return false;
-    const auto roots = solve_quadratic(a, b, c, discriminant);
-    // A root on the clipped-away part does not hide the other: the inside of an open
-    // cylinder shows through its ends.
-    for (const double t : {roots.first, roots.second}) {
-        if (!range.contains(t) || !cyl.extent.keeps(w_along + t * d_along)) continue;
-        hit = {t, 0};
-        return true;
-    }
-    return false;
+    return nearest_kept_root(solve_quadratic(a, b, c, discriminant), range, cyl.extent, w_along,
+                             d_along, hit);
 }
 
 Vec3 normal(const void* shape, const Vec3& point, const Hit&) {
