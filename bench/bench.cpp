@@ -49,8 +49,8 @@ void intersection_rates(const rt::Scene& scene) {
         }
         const double rate = static_cast<double>(tests) / seconds_since(start);
         std::cout << "    " << object.shape.type->name << ": " << rate / 1e6
-                  << " M intersections/s (" << 100.0 * static_cast<double>(hits) / static_cast<double>(tests)
-                  << "% hit)\n";
+                  << " M intersections/s ("
+                  << 100.0 * static_cast<double>(hits) / static_cast<double>(tests) << "% hit)\n";
     }
 }
 
@@ -77,8 +77,8 @@ int main(int argc, char** argv) {
             const double s = best_render_seconds(scene, options, repeat);
             const double pixels = static_cast<double>(scene.viewer.xres) * scene.viewer.yres;
             std::cout << file << ": " << scene.viewer.xres << "x" << scene.viewer.yres << ", "
-                      << scene.objects.size() << " objects, best of " << repeat << ": "
-                      << s * 1000 << " ms (" << pixels / s / 1e6 << " Mpixels/s, threads "
+                      << scene.objects.size() << " objects, best of " << repeat << ": " << s * 1000
+                      << " ms (" << pixels / s / 1e6 << " Mpixels/s, threads "
                       << (threads > 0 ? std::to_string(threads) : "auto") << ")\n";
             intersection_rates(scene);
         }

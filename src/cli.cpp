@@ -89,8 +89,8 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
                 arg = arg.substr(0, eq);
                 has_inline_value = true;
             }
-        } else if (arg.size() > 2 && arg[0] == '-' && std::string_view("dwmsjo").find(arg[1]) !=
-                                                          std::string_view::npos) {
+        } else if (arg.size() > 2 && arg[0] == '-' &&
+                   std::string_view("dwmsjo").find(arg[1]) != std::string_view::npos) {
             value = arg.substr(2);
             arg = arg.substr(0, 2);
             has_inline_value = true;
@@ -143,8 +143,9 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
         } else if (arg.size() > 1 && arg[0] == '-') {
             throw UsageError{"unknown option '" + arg + "'"};
         } else {
-            if (have_input) throw UsageError{"more than one scene file given ('" + cl.input +
-                                             "' and '" + arg + "')"};
+            if (have_input)
+                throw UsageError{"more than one scene file given ('" + cl.input + "' and '" + arg +
+                                 "')"};
             cl.input = arg;
             have_input = true;
         }

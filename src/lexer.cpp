@@ -7,7 +7,9 @@
 namespace rt {
 
 namespace {
-bool is_space(int c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f'; }
+bool is_space(int c) {
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
+}
 }  // namespace
 
 void Lexer::fail(Location where, std::string_view message) const {
@@ -65,8 +67,8 @@ Token Lexer::scan() {
             if (c == EOF || c == '\n') fail(token.where, "unterminated quoted path");
             if (c == '"') break;
             if (token.text.size() >= kMaxTokenLength)
-                fail(token.where, "quoted path longer than " + std::to_string(kMaxTokenLength) +
-                                      " characters");
+                fail(token.where,
+                     "quoted path longer than " + std::to_string(kMaxTokenLength) + " characters");
             token.text.push_back(static_cast<char>(c));
         }
         return token;

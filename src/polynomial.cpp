@@ -88,9 +88,7 @@ void add_root(Roots& roots, double x) {
 }
 
 // |miss| as a fraction of scale, the size of the terms it came from.
-double relative(double miss, double scale) {
-    return scale > 0 ? std::fabs(miss) / scale : 0;
-}
+double relative(double miss, double scale) { return scale > 0 ? std::fabs(miss) / scale : 0; }
 
 // Newton's method on p from an estimate of a root, kept only while |p| keeps shrinking.
 double polish(const Polynomial& p, double x) {

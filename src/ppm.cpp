@@ -41,8 +41,7 @@ OutputFile::OutputFile(std::string path) : path_(std::move(path)) {
     const auto tag = std::to_string(random()) + std::to_string(random());
     temporary_ = path_ + ".tmp-" + tag;
     std::ofstream probe(temporary_, std::ios::binary);
-    if (!probe)
-        throw Error(path_ + ": cannot write the image: " + std::strerror(errno));
+    if (!probe) throw Error(path_ + ": cannot write the image: " + std::strerror(errno));
 }
 
 OutputFile::~OutputFile() {
@@ -92,7 +91,7 @@ std::optional<std::size_t> bytes_left(std::istream& in, const std::filesystem::p
 }
 
 class PpmHeader {
-public:
+  public:
     explicit PpmHeader(std::istream& in) : in_(in) {}
 
     long number(const char* what) {
@@ -110,7 +109,8 @@ public:
         long value = 0;
         while (c >= '0' && c <= '9') {
             value = value * 10 + (c - '0');
-            if (value > 1'000'000'000) throw Error(std::string(what) + " too large in the PPM file");
+            if (value > 1'000'000'000)
+                throw Error(std::string(what) + " too large in the PPM file");
             c = in_.get();
         }
         last_ = c;  // the single whitespace character that ends the field
@@ -118,7 +118,7 @@ public:
     }
     int last() const { return last_; }
 
-private:
+  private:
     std::istream& in_;
     int last_ = EOF;
 };

@@ -64,8 +64,7 @@ SceneReader::Nest::Nest(SceneReader& reader, Location where) : reader_(reader) {
 
 double SceneReader::number(std::string_view what) {
     const Token token = lexer_.next();
-    if (token.at_end())
-        fail(token.where, "unexpected end of file: expected " + std::string(what));
+    if (token.at_end()) fail(token.where, "unexpected end of file: expected " + std::string(what));
     if (token.quoted)
         fail(token.where, "expected " + std::string(what) + " (a number), got a quoted string");
     const char* begin = token.text.c_str();
@@ -133,8 +132,7 @@ long SceneReader::id(std::string_view what) {
 
 std::string SceneReader::path(std::string_view what) {
     Token token = lexer_.next();
-    if (token.at_end())
-        fail(token.where, "unexpected end of file: expected " + std::string(what));
+    if (token.at_end()) fail(token.where, "unexpected end of file: expected " + std::string(what));
     if (token.text.empty()) fail(token.where, std::string(what) + " must not be empty");
     return std::move(token.text);
 }

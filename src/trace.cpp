@@ -41,8 +41,8 @@ bool Tracer::blocked(const Ray& ray, double distance) const {
                        [&](const Object& o) { return o.shape.intersect(ray, range, hit); });
 }
 
-Spectrum Tracer::direct_light(const Vec3& point, const Vec3& facing_normal,
-                              const Vec3& reflected, const Material& m, double ks) const {
+Spectrum Tracer::direct_light(const Vec3& point, const Vec3& facing_normal, const Vec3& reflected,
+                              const Material& m, double ks) const {
     Spectrum total(0.0);
     for (const Light& light : scene_.lights) {
         const int samples = light.sample_count();
@@ -124,8 +124,8 @@ Spectrum Tracer::pixel(int x, int y) const {
     Spectrum sum(0.0);
     for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i)
-            sum += shade_primary(
-                scene_.viewer.primary_ray(x + static_cast<double>(i) / n, y + static_cast<double>(j) / n));
+            sum += shade_primary(scene_.viewer.primary_ray(x + static_cast<double>(i) / n,
+                                                           y + static_cast<double>(j) / n));
     return sum * (1.0 / (n * n));
 }
 

@@ -44,7 +44,9 @@ std::string join(const Parts&... parts) {
 }
 inline std::string show(double v) { return join(v); }
 inline std::string show(const rt::Vec3& v) { return join('(', v.x, ", ", v.y, ", ", v.z, ')'); }
-inline std::string show(const rt::Spectrum& v) { return join('[', v[0], ", ", v[1], ", ", v[2], ']'); }
+inline std::string show(const rt::Spectrum& v) {
+    return join('[', v[0], ", ", v[1], ", ", v[2], ']');
+}
 
 inline bool near(double a, double b, double tolerance) { return std::fabs(a - b) <= tolerance; }
 inline bool near(const rt::Vec3& a, const rt::Vec3& b, double tolerance) {
@@ -59,7 +61,7 @@ inline bool near(const rt::Spectrum& a, const rt::Spectrum& b, double tolerance)
 // A seeded generator whose sequence is the same on every platform (the standard fixes
 // mt19937_64's output but not the distributions').
 class Random {
-public:
+  public:
     explicit Random(std::uint64_t seed) : state_(seed) {}
     std::uint64_t next() {
         // splitmix64
@@ -81,7 +83,7 @@ public:
         }
     }
 
-private:
+  private:
     std::uint64_t state_;
 };
 
@@ -90,45 +92,45 @@ private:
 #define RT_TEST_CONCAT2(a, b) a##b
 #define RT_TEST_CONCAT(a, b) RT_TEST_CONCAT2(a, b)
 
-#define TEST(name)                                                            \
-    static void name();                                                       \
+#define TEST(name)                                                                 \
+    static void name();                                                            \
     static const rt_test::Registrar RT_TEST_CONCAT(registrar_, name)(#name, name); \
     static void name()
 
-#define CHECK(condition)                                                          \
-    do {                                                                          \
+#define CHECK(condition)                                                           \
+    do {                                                                           \
         if (!(condition)) rt_test::record_failure(__FILE__, __LINE__, #condition); \
     } while (0)
 
 // CHECK_NEAR works for doubles, Vec3 and Spectrum.
-#define CHECK_NEAR(actual, expected, tolerance)                                               \
-    do {                                                                                      \
-        const auto rt_actual_ = (actual);                                                     \
-        const auto rt_expected_ = (expected);                                                 \
-        if (!rt_test::near(rt_actual_, rt_expected_, (tolerance)))                           \
-            rt_test::record_failure(__FILE__, __LINE__,                                       \
-                                    std::string(#actual " = ") + rt_test::show(rt_actual_) +  \
-                                        ", expected " + rt_test::show(rt_expected_) +         \
-                                        " within " + rt_test::show(tolerance));               \
+#define CHECK_NEAR(actual, expected, tolerance)                                                    \
+    do {                                                                                           \
+        const auto rt_actual_ = (actual);                                                          \
+        const auto rt_expected_ = (expected);                                                      \
+        if (!rt_test::near(rt_actual_, rt_expected_, (tolerance)))                                 \
+            rt_test::record_failure(__FILE__, __LINE__,                                            \
+                                    std::string(#actual " = ") + rt_test::show(rt_actual_) +       \
+                                        ", expected " + rt_test::show(rt_expected_) + " within " + \
+                                        rt_test::show(tolerance));                                 \
     } while (0)
 
-#define CHECK_EQ(actual, expected)                                                            \
-    do {                                                                                      \
-        const auto rt_actual_ = (actual);                                                     \
-        const auto rt_expected_ = (expected);                                                 \
-        if (!(rt_actual_ == rt_expected_)) {                                                  \
-            std::ostringstream rt_message_;                                                   \
-            rt_message_ << #actual " = " << rt_actual_ << ", expected " << rt_expected_;      \
-            rt_test::record_failure(__FILE__, __LINE__, rt_message_.str());                   \
-        }                                                                                     \
+#define CHECK_EQ(actual, expected)                                                       \
+    do {                                                                                 \
+        const auto rt_actual_ = (actual);                                                \
+        const auto rt_expected_ = (expected);                                            \
+        if (!(rt_actual_ == rt_expected_)) {                                             \
+            std::ostringstream rt_message_;                                              \
+            rt_message_ << #actual " = " << rt_actual_ << ", expected " << rt_expected_; \
+            rt_test::record_failure(__FILE__, __LINE__, rt_message_.str());              \
+        }                                                                                \
     } while (0)
 
 // Checks that a string contains a piece.
-#define CHECK_CONTAINS(text, piece)                                                     \
-    do {                                                                                \
-        const std::string rt_text_ = (text);                                            \
-        const std::string rt_piece_ = (piece);                                          \
-        if (rt_text_.find(rt_piece_) == std::string::npos)                              \
-            rt_test::record_failure(__FILE__, __LINE__,                                 \
+#define CHECK_CONTAINS(text, piece)                                                             \
+    do {                                                                                        \
+        const std::string rt_text_ = (text);                                                    \
+        const std::string rt_piece_ = (piece);                                                  \
+        if (rt_text_.find(rt_piece_) == std::string::npos)                                      \
+            rt_test::record_failure(__FILE__, __LINE__,                                         \
                                     "'" + rt_text_ + "' does not contain '" + rt_piece_ + "'"); \
     } while (0)

@@ -105,9 +105,7 @@ std::string affine_prefix(const Vec3& o, const Mat3& f) {
     return object_text(7, {o.x, o.y, o.z, x.x, x.y, x.z, y.x, y.y, y.z, z.x, z.y, z.z}) + " ";
 }
 
-std::string sphere_text(double r, const Vec3& c) {
-    return object_text(1, {r, c.x, c.y, c.z});
-}
+std::string sphere_text(double r, const Vec3& c) { return object_text(1, {r, c.x, c.y, c.z}); }
 
 // The smallest root beyond 1e-9 of a t^2 + b t + c = 0, solved without cancellation.
 std::optional<double> smallest_positive_root(double a, double b, double c) {

@@ -118,9 +118,11 @@ TEST(io_errors_exit_1) {
 TEST(usage_errors_exit_2) {
     const fs::path dir = work_dir("usage");
     write_file(dir / "scene.in", kScene);
-    const std::string bad[] = {"-x scene.in",  "-d", "-d abc scene.in", "-d -1 scene.in",
-                               "-w x scene.in", "-m fancy scene.in", "a.in b.in",
-                               "--no-shadows=1 scene.in", "-s 0 scene.in", "-j 0 scene.in"};
+    const std::string bad[] = {"-x scene.in",     "-d",
+                               "-d abc scene.in", "-d -1 scene.in",
+                               "-w x scene.in",   "-m fancy scene.in",
+                               "a.in b.in",       "--no-shadows=1 scene.in",
+                               "-s 0 scene.in",   "-j 0 scene.in"};
     for (const std::string& args : bad) {
         write_file(dir / "out.ppm", kKeep);
         const RunResult r = run_rt(dir, args + " -o out.ppm");
@@ -143,9 +145,9 @@ TEST(help_and_version) {
 }
 
 TEST(parse_command_line_values) {
-    const rt::CommandLine cl = rt::parse_command_line(
-        {"-d", "3", "-w0.5", "--mode=color", "-o", "x.ppm", "--no-shadows", "--no-ambient",
-         "--threads", "4", "-s", "2", "in.scene"});
+    const rt::CommandLine cl =
+        rt::parse_command_line({"-d", "3", "-w0.5", "--mode=color", "-o", "x.ppm", "--no-shadows",
+                                "--no-ambient", "--threads", "4", "-s", "2", "in.scene"});
     CHECK_EQ(cl.render.max_depth, 3);
     CHECK_EQ(cl.render.min_weight, 0.5);
     CHECK(cl.render.mode == rt::RenderMode::colour);

@@ -98,7 +98,9 @@ bool check_ray(const Shape& shape, const Ray& ray, std::optional<double> crossin
     return true;
 }
 
-std::string primitive_error(const std::string& text) { return scene_error(join(kTestViewer, text)); }
+std::string primitive_error(const std::string& text) {
+    return scene_error(join(kTestViewer, text));
+}
 
 }  // namespace
 
@@ -241,7 +243,8 @@ TEST(disk_random_rays_match_closed_form) {
         const Shape s = parse_shape(object_text(3, {c.x, c.y, c.z, n.x, n.y, n.z, r}));
         // Aim within 1.5 radii of the centre in the disk's plane, so both hits and misses occur.
         const Vec3 u = perpendicular(n), v = cross(normalized(n), u);
-        const Vec3 aim = c + u * random.uniform(-1.5 * r, 1.5 * r) + v * random.uniform(-1.5 * r, 1.5 * r);
+        const Vec3 aim =
+            c + u * random.uniform(-1.5 * r, 1.5 * r) + v * random.uniform(-1.5 * r, 1.5 * r);
         Ray ray = ray_toward(random, aim);
         if (i % 4 == 0) ray.direction = random.unit_vector();
         const auto crossing = plane_crossing(c, n, ray);
@@ -340,7 +343,8 @@ TEST(annulus_random_rays_match_closed_form) {
         if (crossing) {
             const double from_centre = length(ray.at(*crossing) - c);
             const double margin = 1e-9 * (1 + *crossing);
-            if (std::fabs(from_centre - outer) < margin || std::fabs(from_centre - inner) < margin) {
+            if (std::fabs(from_centre - outer) < margin ||
+                std::fabs(from_centre - inner) < margin) {
                 ++skipped;
                 continue;
             }
@@ -393,8 +397,8 @@ TEST(triangle_random_rays_match_closed_form) {
         const Vec3 n = cross(v1 - v0, v2 - v0);
         // Skip slivers: their containment is too sensitive to rounding to compare.
         if (length(n) < 0.05 * length(v1 - v0) * length(v2 - v0)) continue;
-        const Shape s = parse_shape(
-            object_text(5, {v0.x, v0.y, v0.z, v1.x, v1.y, v1.z, v2.x, v2.y, v2.z}));
+        const Shape s =
+            parse_shape(object_text(5, {v0.x, v0.y, v0.z, v1.x, v1.y, v1.z, v2.x, v2.y, v2.z}));
         // Aim at edge coordinates in [-0.2, 1], so hits and misses both occur.
         const double a = random.uniform(-0.2, 1), b = random.uniform(-0.2, 1);
         const Vec3 aim = v0 + (v1 - v0) * a + (v2 - v0) * b;
@@ -404,7 +408,8 @@ TEST(triangle_random_rays_match_closed_form) {
         bool inside = false;
         if (crossing) {
             const Barycentric w = barycentric(v0, v1, v2, ray.at(*crossing));
-            const double nearest_edge = std::min({std::fabs(w.w0), std::fabs(w.w1), std::fabs(w.w2)});
+            const double nearest_edge =
+                std::min({std::fabs(w.w0), std::fabs(w.w1), std::fabs(w.w2)});
             if (nearest_edge < 1e-9 * (1 + *crossing)) {
                 ++skipped;
                 continue;
@@ -445,12 +450,12 @@ TEST(triangle_edges_and_corners) {
     };
     const double e = 1e-7;
     const Probe probes[] = {
-        {{2, e, 0}, {2, -e, 0}},                  // edge v0 v1
-        {{e, 2, 0}, {-e, 2, 0}},                  // edge v0 v2
-        {{2 - e, 2 - e, 0}, {2 + e, 2 + e, 0}},   // edge v1 v2 (the hypotenuse)
-        {{e, e, 0}, {-e, -e, 0}},                 // corner v0
-        {{4 - 3 * e, e, 0}, {4 + e, 0, 0}},       // corner v1
-        {{e, 4 - 3 * e, 0}, {0, 4 + e, 0}},       // corner v2
+        {{2, e, 0}, {2, -e, 0}},                 // edge v0 v1
+        {{e, 2, 0}, {-e, 2, 0}},                 // edge v0 v2
+        {{2 - e, 2 - e, 0}, {2 + e, 2 + e, 0}},  // edge v1 v2 (the hypotenuse)
+        {{e, e, 0}, {-e, -e, 0}},                // corner v0
+        {{4 - 3 * e, e, 0}, {4 + e, 0, 0}},      // corner v1
+        {{e, 4 - 3 * e, 0}, {0, 4 + e, 0}},      // corner v2
     };
     for (const Probe& p : probes) {
         for (const double side : {1.0, -1.0}) {
@@ -481,12 +486,15 @@ TEST(triangles_sharing_an_edge_leave_no_gap_beside_it) {
         const Vec3 a = random.in_box(3), b = random.in_box(3), c = random.in_box(3);
         const Vec3 d = b + c - a;  // opposite a across the diagonal
         if (length(cross(b - a, c - a)) < 0.05 * length(b - a) * length(c - a)) continue;
-        const Shape first = parse_shape(object_text(5, {a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z}));
-        const Shape second = parse_shape(object_text(5, {b.x, b.y, b.z, d.x, d.y, d.z, c.x, c.y, c.z}));
+        const Shape first =
+            parse_shape(object_text(5, {a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z}));
+        const Shape second =
+            parse_shape(object_text(5, {b.x, b.y, b.z, d.x, d.y, d.z, c.x, c.y, c.z}));
         // In the plane, perpendicular to the diagonal, toward a.
         const Vec3 diagonal = c - b;
         const Vec3 to_a = a - b;
-        const Vec3 toward_a = normalized(to_a - diagonal * (dot(to_a, diagonal) / dot(diagonal, diagonal)));
+        const Vec3 toward_a =
+            normalized(to_a - diagonal * (dot(to_a, diagonal) / dot(diagonal, diagonal)));
         const Vec3 step = toward_a * (1e-9 * length(diagonal));
         for (int k = 0; k < 50; ++k) {
             const Vec3 on_edge = b + diagonal * random.uniform(0.01, 0.99);

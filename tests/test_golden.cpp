@@ -94,8 +94,8 @@ TEST(every_scene_matches_its_golden_image) {
             worst = std::max(worst, diff);
             if (diff * 255 > kLevelTolerance + 0.5) ++differing;
         }
-        const double fraction = static_cast<double>(differing) * 3 /
-                                static_cast<double>(actual.values.size());
+        const double fraction =
+            static_cast<double>(differing) * 3 / static_cast<double>(actual.values.size());
         std::cout << "  " << file.filename().string() << ": " << differing
                   << " pixels differ, worst " << worst * 255 << " levels\n";
         if (fraction > kDifferingPixelFraction)
@@ -104,4 +104,3 @@ TEST(every_scene_matches_its_golden_image) {
                 rt_test::join(file, ": ", differing, " pixels differ from the golden image"));
     }
 }
-

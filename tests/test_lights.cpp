@@ -83,9 +83,9 @@ TEST(point_light_random_points) {
         const Vec3 x = random.in_box(10);
         const Vec3 colour{random.uniform(0, 5), random.uniform(0, 5), random.uniform(0, 5)};
         const bool falloff = i % 2 == 0;
-        const Light light = read_light(object_text(
-            falloff ? 101 : 104,
-            {position.x, position.y, position.z, colour.x, colour.y, colour.z}));
+        const Light light =
+            read_light(object_text(falloff ? 101 : 104, {position.x, position.y, position.z,
+                                                         colour.x, colour.y, colour.z}));
         const LightSample s = light.sample(x, 0);
         const double dx = position.x - x.x, dy = position.y - x.y, dz = position.z - x.z;
         const double distance = std::hypot(dx, dy, dz);
@@ -142,15 +142,15 @@ TEST(spot_light_random_points) {
         if (length(direction) < 0.1) continue;
         const double cos_cutoff = random.uniform(-1, 1);
         const double exponent = random.uniform(0, 20);
-        const Light spot = read_light(object_text(
-            109, {position.x, position.y, position.z, direction.x, direction.y, direction.z,
-                  cos_cutoff, exponent, 2, 3, 4}));
+        const Light spot =
+            read_light(object_text(109, {position.x, position.y, position.z, direction.x,
+                                         direction.y, direction.z, cos_cutoff, exponent, 2, 3, 4}));
         const Vec3 x = random.in_box(10);
         const LightSample s = spot.sample(x, 0);
         // The angle at the light between its axis and the way to x, found with atan2.
         const Vec3 from_light = x - position;
-        const double angle = std::atan2(length(cross(from_light, direction)),
-                                        dot(from_light, direction));
+        const double angle =
+            std::atan2(length(cross(from_light, direction)), dot(from_light, direction));
         const double cos_angle = std::cos(angle);
         const double distance = length(from_light);
         CHECK_NEAR(s.distance, distance, 1e-12 * (1 + distance));
@@ -163,8 +163,8 @@ TEST(spot_light_random_points) {
             CHECK(s.intensity.is_black());
         } else {
             ++lit;
-            const double expected = std::pow(std::max(cos_angle, 0.0), exponent) /
-                                    (distance * distance);
+            const double expected =
+                std::pow(std::max(cos_angle, 0.0), exponent) / (distance * distance);
             CHECK_NEAR(s.intensity, Spectrum(2 * expected, 3 * expected, 4 * expected),
                        1e-9 * (1 + 4 * expected));
         }
@@ -194,7 +194,8 @@ TEST(spot_light_exponent) {
     // At the 3-4-5 angle (cos 0.8) and 5 away, the light is 0.8^exponent of what a point light
     // of the same intensity gives there; on the axis it is the point light's.
     for (const double exponent : {0.0, 0.5, 1.0, 2.0, 7.5, 50.0}) {
-        const Light spot = read_light(object_text(109, {0, 0, 0, 0, -1, 0, 0.1, exponent, 25, 50, 75}));
+        const Light spot =
+            read_light(object_text(109, {0, 0, 0, 0, -1, 0, 0.1, exponent, 25, 50, 75}));
         const double spread = std::pow(0.8, exponent);
         CHECK_NEAR(spot.sample({3, -4, 0}, 0).intensity, Spectrum(spread, 2 * spread, 3 * spread),
                    1e-13);
@@ -261,8 +262,8 @@ TEST(sphere_light_samples_lie_on_the_sphere) {
         const int n = 1 + static_cast<int>(random.next() % 300);
         const Vec3 centre = random.in_box(5);
         const double radius = random.uniform(0.05, 2);
-        const Light light = read_light(
-            object_text(110, {static_cast<double>(n), centre.x, centre.y, centre.z, radius, 3, 6, 9}));
+        const Light light = read_light(object_text(
+            110, {static_cast<double>(n), centre.x, centre.y, centre.z, radius, 3, 6, 9}));
         CHECK_EQ(light.sample_count(), n);
         for (int p = 0; p < 10; ++p) {
             const Vec3 x = random.in_box(8);
@@ -313,7 +314,8 @@ TEST(sphere_light_samples_are_spread_evenly) {
     // squared heights to 1/3 as over the whole sphere, and no two samples crowd together
     // (each stands for an area 4 pi / n, so neighbours are about sqrt(4 pi / n) apart).
     for (const int n : {50, 400, 3000}) {
-        const Light light = read_light(object_text(110, {static_cast<double>(n), 0, 0, 0, 1, 1, 1, 1}));
+        const Light light =
+            read_light(object_text(110, {static_cast<double>(n), 0, 0, 0, 1, 1, 1, 1}));
         const Vec3 x{0.3, -7, 2};
         std::vector<Vec3> offsets;
         Vec3 mean;
@@ -451,13 +453,12 @@ TEST(sphere_light_soft_shadow_through_the_tracer) {
             const Vec3 light_centre = x + axis * setup.d;
             const Vec3 blocker = x + axis * setup.D;
             const int n = 1024;
-            const Scene scene = parse_scene(join(
-                kTestViewer,
-                object_text(110, {static_cast<double>(n), light_centre.x, light_centre.y, light_centre.z, setup.r, 1,
-                                  1, 1}),
-                "\n",
-                object_text(1, {setup.b, blocker.x, blocker.y, blocker.z}),
-                " 100  1 1 1  0 1 1 0 1\n"));
+            const Scene scene = parse_scene(
+                join(kTestViewer,
+                     object_text(110, {static_cast<double>(n), light_centre.x, light_centre.y,
+                                       light_centre.z, setup.r, 1, 1, 1}),
+                     "\n", object_text(1, {setup.b, blocker.x, blocker.y, blocker.z}),
+                     " 100  1 1 1  0 1 1 0 1\n"));
             const Tracer tracer(scene, options);
             const Light& light = scene.lights.at(0);
             int clear = 0;

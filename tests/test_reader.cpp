@@ -34,8 +34,8 @@ TEST(comments_and_number_forms) {
 }
 
 TEST(default_surface_is_shared) {
-    const Scene scene = parse_scene(kViewer + "105 100 0.5 0.5 0.5 0 1 1 0 1\n" +
-                                    "1 1 0 0 0 106\n1 1 3 0 0 106\n");
+    const Scene scene =
+        parse_scene(kViewer + "105 100 0.5 0.5 0.5 0 1 1 0 1\n" + "1 1 0 0 0 106\n1 1 3 0 0 106\n");
     CHECK_EQ(scene.objects.size(), 2u);
     CHECK(scene.objects[0].surface == scene.objects[1].surface);
     CHECK_NEAR(scene.objects[1].surface->at({}).colour, Spectrum(0.5), 0);

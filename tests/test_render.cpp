@@ -99,8 +99,7 @@ TEST(escaping_rays_bring_back_ambient) {
 TEST(mirror_reflection_and_depth_limit) {
     // A mirror plane z = 0 (ks 0.5, kd 0) facing the eye, and behind the eye a white plane
     // lit only by ambient 1: the mirror shows 0.5 x (the white plane's 1 x kd 0.6).
-    const std::string scene = kViewer2x2 + "103 1 1 1\n" +
-                              "2 0  0 0 1  100 1 1 1 0.5 1 0 0 1\n" +
+    const std::string scene = kViewer2x2 + "103 1 1 1\n" + "2 0  0 0 1  100 1 1 1 0.5 1 0 0 1\n" +
                               "2 10 0 0 1  100 1 1 1 0 1 0.6 0 1\n";
     CHECK_NEAR(centre_pixel(scene), Spectrum(0.5 * 0.6), 1e-12);
     RenderOptions options;
@@ -118,8 +117,7 @@ TEST(mirror_reflection_and_depth_limit) {
 
 TEST(parallel_mirrors_stop_at_the_depth_limit) {
     // Two facing mirrors that reflect everything: each bounce adds ambient 1 x kd 0.1 x 0.9^k.
-    const std::string scene = kViewer2x2 + "103 1 1 1\n" +
-                              "2 0  0 0 1  100 1 1 1 0.9 1 0.1 0 1\n" +
+    const std::string scene = kViewer2x2 + "103 1 1 1\n" + "2 0  0 0 1  100 1 1 1 0.9 1 0.1 0 1\n" +
                               "2 10 0 0 1  100 1 1 1 0.9 1 0.1 0 1\n";
     for (int depth : {0, 1, 3, 7}) {
         RenderOptions options;
@@ -139,8 +137,8 @@ TEST(reflect_obeys_the_law_of_reflection) {
         if (dot(in, n) > 0) in = -in;
         const Vec3 r = reflect(in, n);
         CHECK_NEAR(length(r), 1, 1e-12);
-        CHECK_NEAR(dot(r, n), -dot(in, n), 1e-12);         // equal angles
-        CHECK_NEAR(dot(cross(in, n), r), 0, 1e-12);        // in the plane of incidence
+        CHECK_NEAR(dot(r, n), -dot(in, n), 1e-12);   // equal angles
+        CHECK_NEAR(dot(cross(in, n), r), 0, 1e-12);  // in the plane of incidence
         CHECK_NEAR(length(cross(in, n)), length(cross(r, n)), 1e-12);
     }
 }
@@ -164,9 +162,9 @@ TEST(refract_obeys_snells_law) {
         CHECK(t.has_value());
         if (!t) continue;
         CHECK_NEAR(length(*t), 1, 1e-12);
-        CHECK(dot(*t, n) < 0);                                  // goes through the surface
+        CHECK(dot(*t, n) < 0);                                    // goes through the surface
         CHECK_NEAR(n1 * sin_i, n2 * length(cross(*t, n)), 1e-9);  // Snell's law
-        CHECK_NEAR(dot(cross(in, n), *t), 0, 1e-12);            // in the plane of incidence
+        CHECK_NEAR(dot(cross(in, n), *t), 0, 1e-12);              // in the plane of incidence
     }
     CHECK(total_internal > 100);
 }
@@ -177,8 +175,8 @@ TEST(glass_sphere_bends_the_ray_as_the_index_bookkeeping_says) {
     // screen at z = -10, and see the disk through the sphere. A ray that kept index 1.5 on
     // leaving, or that never bent, lands elsewhere and shows the blue screen.
     const double h = 0.5, n = 1.5;
-    const double theta1 = std::asin(h);             // incidence on entry
-    const double theta2 = std::asin(h / n);         // refraction inside
+    const double theta1 = std::asin(h);              // incidence on entry
+    const double theta2 = std::asin(h / n);          // refraction inside
     const double deviation = 2 * (theta1 - theta2);  // total turn after entry and exit
     // Exit point: the chord inside turns by pi - 2 theta2 around the centre.
     const double entry_angle = theta1;  // polar angle of the entry point, from +z toward +y
@@ -204,8 +202,8 @@ TEST(total_internal_reflection_moves_kt_to_reflection) {
     // (41.8 degrees) is reflected with weight ks + kt, and inside a sphere it meets the
     // surface at the same angle every time, so it never escapes: nothing comes back. Below
     // the critical angle it leaves and brings back the ambient light.
-    const std::string scene = std::string(kViewer2x2) + "103 1 1 1\n" +
-                              "1 1 0 0 0  100 1 1 1 0 1 0 1 1.5\n";
+    const std::string scene =
+        std::string(kViewer2x2) + "103 1 1 1\n" + "1 1 0 0 0  100 1 1 1 0 1 0 1 1.5\n";
     const Scene s = parse_scene(scene);
     RenderOptions options;
     options.min_weight = 0;
@@ -296,6 +294,7 @@ TEST(supersampling_averages_a_grid_from_the_corner) {
     const Tracer reference(s, single);
     Spectrum sum(0.0);
     for (double dy : {0.0, 0.5})
-        for (double dx : {0.0, 0.5}) sum += reference.shade_primary(s.viewer.primary_ray(1 + dx, 1 + dy));
+        for (double dx : {0.0, 0.5})
+            sum += reference.shade_primary(s.viewer.primary_ray(1 + dx, 1 + dy));
     CHECK_NEAR(tracer.pixel(1, 1), sum * 0.25, 1e-15);
 }

@@ -53,9 +53,7 @@ const std::string kTexture4x2 =
     "0 0 15  1 0 15  2 0 15  3 0 15\n"
     "0 1 15  1 1 15  2 1 15  3 1 15\n";
 
-Spectrum texel(int x, int y) {
-    return {x / 15.0, y / 15.0, 1.0};
-}
+Spectrum texel(int x, int y) { return {x / 15.0, y / 15.0, 1.0}; }
 
 // An image-mapped surface on the texture at `path`, with O at the origin, U along x and V
 // along y, over a base surface with ks 0.5 and kt 0.

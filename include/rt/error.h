@@ -10,7 +10,7 @@ namespace rt {
 // "file:line:col: " where the error has a place in a scene file. main() prints it and
 // exits with status 1.
 class Error : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 

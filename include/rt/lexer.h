@@ -29,7 +29,7 @@ struct Token {
 inline constexpr std::size_t kMaxTokenLength = 4096;
 
 class Lexer {
-public:
+  public:
     Lexer(std::istream& in, std::string name) : in_(in), name_(std::move(name)) {}
 
     // The next token without consuming it.
@@ -40,7 +40,7 @@ public:
     // Throws rt::Error with the message prefixed by "name:line:col: ".
     [[noreturn]] void fail(Location where, std::string_view message) const;
 
-private:
+  private:
     int get();
     Token scan();
 

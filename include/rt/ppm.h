@@ -21,7 +21,7 @@ void write_ppm(std::ostream& out, const Raster& raster);
 // written, so a failed render never leaves a damaged or missing image behind. "-" writes to
 // standard output. Throws rt::Error on failure.
 class OutputFile {
-public:
+  public:
     explicit OutputFile(std::string path);
     ~OutputFile();
     OutputFile(const OutputFile&) = delete;
@@ -29,7 +29,7 @@ public:
 
     void write(const Raster& raster);
 
-private:
+  private:
     std::string path_;
     std::filesystem::path temporary_;
     bool committed_ = false;

@@ -10,7 +10,7 @@
 namespace rt {
 
 class Raster {
-public:
+  public:
     Raster(int width, int height)
         : width_(width),
           height_(height),
@@ -28,7 +28,7 @@ public:
         for (std::size_t i = 0; i < kSpectrumComponents; ++i) values_[index(x, y) + i] = s[i];
     }
 
-private:
+  private:
     std::size_t index(int x, int y) const {
         return (static_cast<std::size_t>(y) * width_ + x) * kSpectrumComponents;
     }

@@ -27,7 +27,7 @@ inline constexpr long kMaxPixels = 64L * 1024 * 1024;
 // Reads one scene. The read functions of the object tables call back into it for their
 // numbers, so every error they report carries a place in the file.
 class SceneReader {
-public:
+  public:
     // name is used in messages ("<stdin>" for standard input); relative texture paths are
     // resolved against base_dir.
     SceneReader(std::istream& in, std::string name, std::filesystem::path base_dir);
@@ -54,16 +54,16 @@ public:
     [[noreturn]] void fail(Location where, std::string_view message) const;
     std::filesystem::path resolve(const std::string& path) const;
 
-private:
+  private:
     // Counts nesting depth while an affine or checker reads what it holds.
     class Nest {
-    public:
+      public:
         Nest(SceneReader& reader, Location where);
         ~Nest() { --reader_.depth_; }
         Nest(const Nest&) = delete;
         Nest& operator=(const Nest&) = delete;
 
-    private:
+      private:
         SceneReader& reader_;
     };
 

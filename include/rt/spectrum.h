@@ -16,8 +16,8 @@ struct BasicSpectrum {
     constexpr BasicSpectrum() = default;
     constexpr explicit BasicSpectrum(double all) { c.fill(all); }
     template <typename... T>
-        requires(sizeof...(T) == N && N > 1)
-    constexpr BasicSpectrum(T... values) : c{static_cast<double>(values)...} {}
+    requires(sizeof...(T) == N && N > 1) constexpr BasicSpectrum(T... values)
+        : c{static_cast<double>(values)...} {}
 
     constexpr double& operator[](std::size_t i) { return c[i]; }
     constexpr double operator[](std::size_t i) const { return c[i]; }

@@ -30,7 +30,7 @@ struct SceneHit {
 };
 
 class Tracer {
-public:
+  public:
     Tracer(const Scene& scene, const RenderOptions& options) : scene_(scene), options_(options) {}
 
     // The light arriving back along a ray; depth and weight as the contract's recursion rules,
@@ -45,7 +45,7 @@ public:
     // True when any object lies along the ray closer than `distance`.
     bool blocked(const Ray& ray, double distance) const;
 
-private:
+  private:
     Spectrum direct_light(const Vec3& point, const Vec3& facing_normal, const Vec3& reflected,
                           const Material& m, double ks) const;
     bool may_trace(int depth, double weight) const {

@@ -48,13 +48,9 @@ Vec3 normal(const void* shape, const Vec3& point, const Hit& hit) {
     return normalized(a.frame.normal_to_world(local_normal));
 }
 
-Bounds bounds(const void* shape) {
-    return static_cast<const Affine*>(shape)->box;
-}
+Bounds bounds(const void* shape) { return static_cast<const Affine*>(shape)->box; }
 
-bool has_inside(const void* shape) {
-    return static_cast<const Affine*>(shape)->inner.has_inside();
-}
+bool has_inside(const void* shape) { return static_cast<const Affine*>(shape)->inner.has_inside(); }
 
 bool inside(const void* shape, const Vec3& point) {
     const auto& a = *static_cast<const Affine*>(shape);

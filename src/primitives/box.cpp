@@ -16,9 +16,7 @@ struct Box {
 
 // Hit.part names the face, so the normal is exact even where faces meet: 2k is the face
 // x_k = min_k and 2k + 1 the face x_k = max_k.
-constexpr int face(int axis, bool at_max) {
-    return 2 * axis + (at_max ? 1 : 0);
-}
+constexpr int face(int axis, bool at_max) { return 2 * axis + (at_max ? 1 : 0); }
 
 }  // namespace
 

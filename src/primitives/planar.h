@@ -55,7 +55,6 @@ inline Bounds disk_bounds(const Vec3& centre, const Vec3& n, double radius) {
     return {centre - r, centre + r};
 }
 
-
 // A flat shape spanned by two edges from a vertex: the triangle and the parallelogram differ
 // only in which (alpha, beta) they keep.
 struct EdgePatch {
@@ -96,8 +95,8 @@ struct Ring {
     double inner_squared;
 
     static Ring make(const Vec3& centre, const Vec3& unit_normal, double outer, double inner) {
-        return {{unit_normal, dot(unit_normal, centre)}, centre, outer, outer * outer,
-                inner * inner};
+        return {
+            {unit_normal, dot(unit_normal, centre)}, centre, outer, outer * outer, inner * inner};
     }
     bool intersect(const Ray& ray, Interval range, Hit& hit) const {
         const auto t = plane.distance(ray, range);

@@ -45,9 +45,7 @@ int largest_axis(const Vec3& v) {
     return v.y >= v.z ? 1 : 2;
 }
 
-Point2 project(const Vec3& p, int u_axis, int v_axis) {
-    return {p[u_axis], p[v_axis]};
-}
+Point2 project(const Vec3& p, int u_axis, int v_axis) { return {p[u_axis], p[v_axis]}; }
 
 // The even-odd rule: count the edges that a ray from p along +u crosses. Each edge is taken
 // as half-open in v, so a ray through a vertex counts the two edges there once between them.
@@ -140,8 +138,6 @@ Vec3 normal(const void* shape, const Vec3&, const Hit&) {
     return static_cast<const Polygon*>(shape)->plane.normal;
 }
 
-Bounds bounds(const void* shape) {
-    return static_cast<const Polygon*>(shape)->box;
-}
+Bounds bounds(const void* shape) { return static_cast<const Polygon*>(shape)->box; }
 
 }  // namespace rt::polygon

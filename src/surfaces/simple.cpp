@@ -28,8 +28,12 @@ Material read_material(SceneReader& reader) {
 
 namespace rt::simple_surface {
 
-SurfaceData read(SceneReader& reader) { return std::make_shared<const Material>(read_material(reader)); }
+SurfaceData read(SceneReader& reader) {
+    return std::make_shared<const Material>(read_material(reader));
+}
 
-Material evaluate(const void* surface, const Vec3&) { return *static_cast<const Material*>(surface); }
+Material evaluate(const void* surface, const Vec3&) {
+    return *static_cast<const Material*>(surface);
+}
 
 }  // namespace rt::simple_surface
