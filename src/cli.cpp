@@ -86,13 +86,13 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
         if (arg.rfind("--", 0) == 0) {
             if (const auto eq = arg.find('='); eq != std::string::npos) {
                 value = arg.substr(eq + 1);
-                arg = arg.substr(0, eq);
+                arg.resize(eq);
                 has_inline_value = true;
             }
         } else if (arg.size() > 2 && arg[0] == '-' &&
                    std::string_view("dwmsjo").find(arg[1]) != std::string_view::npos) {
             value = arg.substr(2);
-            arg = arg.substr(0, 2);
+            arg.resize(2);
             has_inline_value = true;
         }
         auto take_value = [&]() -> std::string {
