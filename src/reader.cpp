@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "rt/error.h"
+#include "rt/ppm.h"
 
 namespace rt {
 
@@ -135,6 +136,22 @@ std::string SceneReader::path(std::string_view what) {
     if (token.at_end()) fail(token.where, "unexpected end of file: expected " + std::string(what));
     if (token.text.empty()) fail(token.where, std::string(what) + " must not be empty");
     return std::move(token.text);
+}
+
+std::shared_ptr<const Image> SceneReader::texture(std::string_view what) {
+    const Location where = next_location();
+    const std::string written = path(what);
+    const std::filesystem::path resolved = resolve(written);
+    if (const auto known = textures_.find(resolved); known != textures_.end()) return known->second;
+    try {
+        auto image = std::make_shared<const Image>(read_ppm(resolved));
+        textures_.emplace(resolved, image);
+        return image;
+    } catch (const Error& e) {
+        std::string message = "cannot read texture '" + written + "': " + e.what();
+        if (resolved.string() != written) message += " (looked for '" + resolved.string() + "')";
+        fail(where, message);
+    }
 }
 
 Shape SceneReader::shape(std::string_view what) {

@@ -522,3 +522,15 @@ TEST(every_surface_can_be_the_default) {
     CHECK_NEAR(affine->at({1.5, 0.2, 0.7}).colour, kRedColour, 0);
     CHECK_NEAR(affine->at({2.5, 0.2, 0.7}).colour, kBlueColour, 0);
 }
+
+TEST(a_texture_is_loaded_once_per_scene) {
+    const std::string path = write_work_file("shared.ppm", kTexture4x2);
+    std::istringstream in(path + " " + path + " \"" + path + "\"");
+    SceneReader reader(in, "test.in", {});
+    const auto first = reader.texture("texture file path");
+    const auto second = reader.texture("texture file path");
+    const auto third = reader.texture("texture file path");
+    CHECK(first == second);
+    CHECK(first == third);
+    CHECK_EQ(first->width, 4);
+}

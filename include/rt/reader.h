@@ -4,6 +4,8 @@
 
 #include <filesystem>
 #include <istream>
+#include <map>
+#include <memory>
 #include <string>
 #include <string_view>
 
@@ -14,6 +16,8 @@
 #include "rt/surface.h"
 
 namespace rt {
+
+struct Image;
 
 // Affine primitives, surfaces and lights and checker surfaces hold other objects; input that
 // nests them deeper than this is refused, so no input can overflow the stack.
@@ -42,6 +46,9 @@ class SceneReader {
     Vec3 nonzero_vec3(std::string_view what);  // a direction: zero length is an error
     long whole(std::string_view what, long min, long max);
     std::string path(std::string_view what);
+    // Reads a texture path and loads the PPM it names (relative to the scene's directory).
+    // Each file is loaded once per scene however many surfaces name it.
+    std::shared_ptr<const Image> texture(std::string_view what);
 
     // Nested objects: an inner primitive (ID and numbers, no surface), a surface (ID and
     // numbers, or 106 for the current default), a positioned light (ID and numbers).
@@ -75,6 +82,7 @@ class SceneReader {
     std::string name_;
     std::filesystem::path base_dir_;
     SurfacePtr default_surface_;
+    std::map<std::filesystem::path, std::shared_ptr<const Image>> textures_;
     int depth_ = 0;
 };
 

@@ -4,7 +4,6 @@
 // takes the nearest pixel: the pixel whose square holds (u, v), no filtering.
 #include <cmath>
 
-#include "rt/error.h"
 #include "rt/ppm.h"
 #include "rt/reader.h"
 #include "surfaces/surfaces.h"
@@ -16,7 +15,7 @@ struct ImageSurface {
     Vec3 origin;
     Vec3 to_u;  // U / |U|^2, so that u = to_u . (p - O)
     Vec3 to_v;  // V / |V|^2
-    Image image;
+    std::shared_ptr<const Image> image;  // shared by every surface naming the same file
     SurfacePtr base;
 };
 
@@ -36,17 +35,7 @@ SurfaceData read(SceneReader& reader) {
     const Vec3 origin = reader.vec3("image-mapped surface origin O");
     const Vec3 u = reader.nonzero_vec3("image-mapped surface U vector");
     const Vec3 v = reader.nonzero_vec3("image-mapped surface V vector");
-    const Location path_at = reader.next_location();
-    const std::string path = reader.path("texture file path");
-    const auto resolved = reader.resolve(path);
-    Image image;
-    try {
-        image = read_ppm(resolved);
-    } catch (const Error& e) {
-        std::string message = "cannot read texture '" + path + "': " + e.what();
-        if (resolved.string() != path) message += " (looked for '" + resolved.string() + "')";
-        reader.fail(path_at, message);
-    }
+    auto image = reader.texture("texture file path");
     SurfacePtr base = reader.surface();
     return std::make_shared<const ImageSurface>(ImageSurface{
         origin, u / length_squared(u), v / length_squared(v), std::move(image), std::move(base)});
@@ -56,10 +45,10 @@ Material evaluate(const void* surface, const Vec3& point) {
     const auto& s = *static_cast<const ImageSurface*>(surface);
     Material m = s.base->at(point);
     const Vec3 offset = point - s.origin;
-    const int column = pixel_index(dot(s.to_u, offset), s.image.width);
+    const int column = pixel_index(dot(s.to_u, offset), s.image->width);
     // Image rows run from the top; v = 0 is the bottom row.
-    const int row = s.image.height - 1 - pixel_index(dot(s.to_v, offset), s.image.height);
-    m.colour = s.image.at(column, row);
+    const int row = s.image->height - 1 - pixel_index(dot(s.to_v, offset), s.image->height);
+    m.colour = s.image->at(column, row);
     return m;
 }
 
