@@ -1,6 +1,7 @@
 // Helpers for tests that build scenes and shapes from scene-format text.
 #pragma once
 
+#include <cmath>
 #include <initializer_list>
 #include <optional>
 #include <sstream>
@@ -44,6 +45,21 @@ inline std::string scene_error(const std::string& text) {
         return e.what();
     }
     return "";
+}
+
+// An orthonormal frame whose third axis is along `axis`, for closed forms worked out in
+// a primitive's own coordinates.
+struct Frame {
+    rt::Vec3 e1, e2, e3;  // e3 is the unit axis
+    rt::Vec3 local(const rt::Vec3& v) const { return {dot(v, e1), dot(v, e2), dot(v, e3)}; }
+    rt::Vec3 world(const rt::Vec3& v) const { return v.x * e1 + v.y * e2 + v.z * e3; }
+};
+
+inline Frame frame_around(const rt::Vec3& axis) {
+    const rt::Vec3 e3 = normalized(axis);
+    const rt::Vec3 helper = std::fabs(e3.x) < 0.5 ? rt::Vec3(1, 0, 0) : rt::Vec3(0, 1, 0);
+    const rt::Vec3 e1 = normalized(cross(e3, helper));
+    return {e1, cross(e3, e1), e3};
 }
 
 // The nearest hit beyond a small tolerance, or nothing.

@@ -14,18 +14,6 @@ namespace {
 
 const std::string kSurface = " 100 1 1 1 0 1 1 0 1\n";
 
-struct Frame {
-    Vec3 e1, e2, e3;  // e3 is the unit axis
-    Vec3 local(const Vec3& v) const { return {dot(v, e1), dot(v, e2), dot(v, e3)}; }
-};
-
-Frame frame_around(const Vec3& axis) {
-    const Vec3 e3 = normalized(axis);
-    const Vec3 helper = std::fabs(e3.x) < 0.5 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
-    const Vec3 e1 = normalized(cross(e3, helper));
-    return {e1, cross(e3, e1), e3};
-}
-
 struct CylinderSpec {
     double radius, start, finish;
     Vec3 centre, axis;
