@@ -23,6 +23,21 @@ struct AxialExtent {
     bool keeps(double h) const { return h >= near && h <= far; }
 };
 
+// A ray seen from the axis: the offset of its origin from the axis point, and that offset and
+// its direction split into parts along and across the unit axis.
+struct AxialRay {
+    Vec3 w;  // ray origin - axis point
+    double w_along, d_along;
+    Vec3 w_across, d_across;
+
+    AxialRay(const AxialExtent& e, const Ray& ray)
+        : w(ray.origin - e.origin),
+          w_along(dot(w, e.axis)),
+          d_along(dot(ray.direction, e.axis)),
+          w_across(w - w_along * e.axis),
+          d_across(ray.direction - d_along * e.axis) {}
+};
+
 // Reads start, finish, point and axis. `name` ("cone") prefixes each field in messages and
 // `point_name` ("apex") names the point.
 inline AxialExtent read_axial_extent(SceneReader& reader, const std::string& name,
@@ -62,12 +77,11 @@ inline QuadraticRoots solve_quadratic(double a, double b, double c, double discr
 
 // The nearer root that is in range and on the kept part of the surface. A root on the
 // clipped-away part does not hide the other: through the open end of a cone or cylinder its
-// far wall shows. w_along and d_along are the ray origin's and direction's components along
-// the axis, in the extent's units.
+// far wall shows.
 inline bool nearest_kept_root(const QuadraticRoots& roots, Interval range,
-                              const AxialExtent& extent, double w_along, double d_along, Hit& hit) {
+                              const AxialExtent& extent, const AxialRay& r, Hit& hit) {
     for (const double t : {roots.first, roots.second}) {
-        if (!range.contains(t) || !extent.keeps(w_along + t * d_along)) continue;
+        if (!range.contains(t) || !extent.keeps(r.w_along + t * r.d_along)) continue;
         hit = {t, 0};
         return true;
     }

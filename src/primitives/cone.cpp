@@ -33,12 +33,9 @@ ShapeData read(SceneReader& reader) {
 bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
     const auto& k = *static_cast<const Cone*>(shape);
     const Vec3& axis = k.extent.axis;
-    // Split the offset from the apex and the direction into parts along and across the axis.
-    const Vec3 w = ray.origin - k.extent.origin;
-    const double w_along = dot(w, axis);
-    const double d_along = dot(ray.direction, axis);
-    const Vec3 w_across = w - w_along * axis;
-    const Vec3 d_across = ray.direction - d_along * axis;
+    // The offset from the apex and the direction, split along and across the axis.
+    const AxialRay r(k.extent, ray);
+    const auto& [w, w_along, d_along, w_across, d_across] = r;
     // The quadratic A t^2 + 2 B t + C = 0 of the original, written with cos^2 and sin^2 so
     // that no term is 1 - (d.a)^2 (which cancels for rays near the axis).
     const double a = k.cos2 * length_squared(d_across) - k.sin2 * d_along * d_along;
@@ -51,8 +48,7 @@ bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
     const double s = dot(cross(w, ray.direction), axis);
     const double discriminant = k.cos2 * (k.sin2 * length_squared(m) - k.cos2 * s * s);
     if (!(discriminant >= 0)) return false;
-    return nearest_kept_root(solve_quadratic(a, b, c, discriminant), range, k.extent, w_along,
-                             d_along, hit);
+    return nearest_kept_root(solve_quadratic(a, b, c, discriminant), range, k.extent, r, hit);
 }
 
 Vec3 normal(const void* shape, const Vec3& point, const Hit&) {

@@ -27,11 +27,10 @@ bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
     const auto& cyl = *static_cast<const Cylinder*>(shape);
     const Vec3& axis = cyl.extent.axis;
     // Only the parts across the axis matter for the distance from it.
-    const Vec3 w = ray.origin - cyl.extent.origin;
-    const double w_along = dot(w, axis);
-    const double d_along = dot(ray.direction, axis);
-    const Vec3 w_across = w - w_along * axis;
-    const Vec3 d_across = ray.direction - d_along * axis;
+    const AxialRay r(cyl.extent, ray);
+    const Vec3& w = r.w;
+    const Vec3& w_across = r.w_across;
+    const Vec3& d_across = r.d_across;
     // A t^2 + 2 B t + C = 0, with A = |d_across|^2 rather than the original's 1 - (d.a)^2,
     // which cancels for rays near the axis.
     const double a = length_squared(d_across);
@@ -44,8 +43,7 @@ bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
     const double s = dot(cross(w, ray.direction), axis);
     const double discriminant = a * cyl.radius_squared - s * s;
     if (!(discriminant >= 0)) return false;
-    return nearest_kept_root(solve_quadratic(a, b, c, discriminant), range, cyl.extent, w_along,
-                             d_along, hit);
+    return nearest_kept_root(solve_quadratic(a, b, c, discriminant), range, cyl.extent, r, hit);
 }
 
 Vec3 normal(const void* shape, const Vec3& point, const Hit&) {
