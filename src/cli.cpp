@@ -68,6 +68,8 @@ options:
       --no-shadows    do not test shadow rays: every light reaches every point
       --no-reflection do not trace reflected rays
       --no-refraction do not trace refracted rays
+      --no-bvh        test every ray against every object in turn instead of
+                      using the bounding volume hierarchy (same image, slower)
   -h, --help          print this help and exit
   -V, --version       print the version and exit
 
@@ -136,6 +138,8 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
             flag(r.reflection, false);
         } else if (arg == "--no-refraction") {
             flag(r.refraction, false);
+        } else if (arg == "--no-bvh") {
+            flag(r.accelerate, false);
         } else if (arg == "-h" || arg == "--help") {
             flag(cl.help, true);
         } else if (arg == "-V" || arg == "--version") {

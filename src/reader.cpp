@@ -258,7 +258,9 @@ Scene SceneReader::read_scene() {
 
 Scene read_scene(std::istream& in, const std::string& name, const std::filesystem::path& base_dir) {
     SceneReader reader(in, name, base_dir);
-    return reader.read_scene();
+    Scene scene = reader.read_scene();
+    scene.build_index();
+    return scene;
 }
 
 Scene read_scene_file(const std::string& path) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <functional>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
@@ -21,8 +23,20 @@ std::optional<Vec3> refract(const Vec3& incoming, const Vec3& normal, double eta
     return normalized(eta * incoming + (eta * cos_i - std::sqrt(k)) * normal);
 }
 
+Tracer::Tracer(const Scene& scene, const RenderOptions& options)
+    : scene_(scene), options_(options) {
+    if (options_.accelerate && !scene_.index.covers(scene_.objects.size()))
+        throw std::logic_error("Tracer: the scene's index was not built (Scene::build_index)");
+}
+
 std::optional<SceneHit> Tracer::closest_hit(const Ray& ray) const {
     Interval range{hit_tolerance(ray.origin), kInfinity};
+    if (options_.accelerate) {
+        ObjectIndex::Found found;
+        if (!scene_.index.closest(ray, range, found)) return std::nullopt;
+        return SceneHit{&scene_.objects[found.object], found.hit};
+    }
+    // The linear scan: every object in file order.
     std::optional<SceneHit> best;
     for (const Object& object : scene_.objects) {
         Hit hit;
@@ -35,7 +49,9 @@ std::optional<SceneHit> Tracer::closest_hit(const Ray& ray) const {
 }
 
 bool Tracer::blocked(const Ray& ray, double distance) const {
+    ++stats_.shadow_rays;
     const Interval range{hit_tolerance(ray.origin), distance};
+    if (options_.accelerate) return scene_.index.any(ray, range);
     Hit hit;
     return std::any_of(scene_.objects.begin(), scene_.objects.end(),
                        [&](const Object& o) { return o.shape.intersect(ray, range, hit); });
@@ -63,6 +79,7 @@ Spectrum Tracer::direct_light(const Vec3& point, const Vec3& facing_normal, cons
 }
 
 Spectrum Tracer::trace(const Ray& ray, int depth, double weight, double ior) const {
+    ++(depth == 0 ? stats_.primary_rays : stats_.secondary_rays);
     const auto found = closest_hit(ray);
     // A ray that escapes brings back the ambient intensity.
     if (!found) return scene_.ambient;
@@ -98,6 +115,7 @@ Spectrum Tracer::trace(const Ray& ray, int depth, double weight, double ior) con
 
 Spectrum Tracer::shade_primary(const Ray& ray) const {
     if (options_.mode == RenderMode::trace) return trace(ray);
+    ++stats_.primary_rays;
     const auto found = closest_hit(ray);
     if (!found) return Spectrum(0.0);
     const Vec3 point = ray.at(found->hit.t);
@@ -129,23 +147,27 @@ Spectrum Tracer::pixel(int x, int y) const {
     return sum * (1.0 / (n * n));
 }
 
-Raster render(const Scene& scene, const RenderOptions& options) {
+Raster render(const Scene& scene, const RenderOptions& options, RenderStats* stats) {
     const Viewer& v = scene.viewer;
     Raster raster(v.xres, v.yres);
-    const Tracer tracer(scene, options);
-    std::atomic<int> next_row{0};
-    auto work = [&] {
-        for (int y = next_row++; y < v.yres; y = next_row++)
-            for (int x = 0; x < v.xres; ++x) raster.set(x, y, tracer.pixel(x, y));
-    };
     int threads = options.threads > 0 ? options.threads
                                       : static_cast<int>(std::thread::hardware_concurrency());
     threads = std::clamp(threads, 1, v.yres);
+    // One tracer per thread, each counting its own rays; merged once all have joined.
+    std::vector<Tracer> tracers(static_cast<std::size_t>(threads), Tracer(scene, options));
+    std::atomic<int> next_row{0};
+    auto work = [&](const Tracer& tracer) {
+        for (int y = next_row++; y < v.yres; y = next_row++)
+            for (int x = 0; x < v.xres; ++x) raster.set(x, y, tracer.pixel(x, y));
+    };
     {
         std::vector<std::jthread> pool;
-        for (int i = 1; i < threads; ++i) pool.emplace_back(work);
-        work();
+        for (std::size_t i = 1; i < tracers.size(); ++i)
+            pool.emplace_back(work, std::cref(tracers[i]));
+        work(tracers[0]);
     }  // every worker has joined here
+    if (stats != nullptr)
+        for (const Tracer& tracer : tracers) *stats += tracer.stats();
     return raster;
 }
 

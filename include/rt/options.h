@@ -11,6 +11,9 @@ struct RenderOptions {
     RenderMode mode = RenderMode::trace;
     int samples = 1;  // -s: samples per pixel along each axis (supersampling)
     int threads = 0;  // -j: worker threads; 0 means one per hardware thread
+    // --no-bvh turns this off: every ray is tested against every object in file order. The
+    // image is the same either way; the linear scan is the oracle the hierarchy is tested by.
+    bool accelerate = true;
 
     // Parts of the illumination model that the --no-* switches turn off, for testing.
     bool ambient = true;

@@ -36,6 +36,7 @@ class SceneReader {
     // resolved against base_dir.
     SceneReader(std::istream& in, std::string name, std::filesystem::path base_dir);
 
+    // The scene as read, without its hierarchy (Scene::build_index builds it).
     Scene read_scene();
 
     // Field readers; `what` names the field in messages ("sphere radius").
@@ -89,7 +90,8 @@ class SceneReader {
 // A number as messages show it (%g).
 std::string format_number(double value);
 
-// Convenience wrappers: read a whole scene from a stream or a file ("-" for stdin).
+// Convenience wrappers: read a whole scene from a stream or a file ("-" for stdin) and build
+// its hierarchy.
 Scene read_scene(std::istream& in, const std::string& name,
                  const std::filesystem::path& base_dir = {});
 Scene read_scene_file(const std::string& path);

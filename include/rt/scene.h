@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "rt/light.h"
+#include "rt/object_index.h"
 #include "rt/primitive.h"
 #include "rt/surface.h"
 #include "rt/viewer.h"
@@ -21,6 +22,10 @@ struct Scene {
     std::vector<Object> objects;
     std::vector<Light> lights;
     Spectrum ambient{0.0};  // the sum of the ambient lights (ID 103)
+    ObjectIndex index;      // the hierarchy over `objects`, once build_index() has run
+
+    // Builds the hierarchy over the objects; read_scene() and read_scene_file() call it.
+    void build_index() { index = ObjectIndex(objects); }
 };
 
 }  // namespace rt

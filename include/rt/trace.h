@@ -1,6 +1,7 @@
 // The recursive tracer of sections 1.6 to 1.10 of the original.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 
 #include "rt/options.h"
@@ -29,9 +30,27 @@ struct SceneHit {
     Hit hit;
 };
 
+// How many rays of each kind a render traced.
+struct RenderStats {
+    std::uint64_t primary_rays = 0;
+    std::uint64_t secondary_rays = 0;  // reflected and refracted
+    std::uint64_t shadow_rays = 0;
+
+    std::uint64_t total() const { return primary_rays + secondary_rays + shadow_rays; }
+    RenderStats& operator+=(const RenderStats& other) {
+        primary_rays += other.primary_rays;
+        secondary_rays += other.secondary_rays;
+        shadow_rays += other.shadow_rays;
+        return *this;
+    }
+};
+
+// Traces rays through a scene. A Tracer counts the rays it traces, so each thread uses its
+// own; the scene is shared read-only. With options.accelerate (the default) the scene's
+// index must have been built (read_scene does), or construction throws std::logic_error.
 class Tracer {
   public:
-    Tracer(const Scene& scene, const RenderOptions& options) : scene_(scene), options_(options) {}
+    Tracer(const Scene& scene, const RenderOptions& options);
 
     // The light arriving back along a ray; depth and weight as the contract's recursion rules,
     // ior the refractive index of the medium the ray travels in.
@@ -45,6 +64,8 @@ class Tracer {
     // True when any object lies along the ray closer than `distance`.
     bool blocked(const Ray& ray, double distance) const;
 
+    const RenderStats& stats() const { return stats_; }
+
   private:
     Spectrum direct_light(const Vec3& point, const Vec3& facing_normal, const Vec3& reflected,
                           const Material& m, double ks) const;
@@ -54,10 +75,13 @@ class Tracer {
 
     const Scene& scene_;
     RenderOptions options_;  // a copy: small, and safe when built from a temporary
+    // Counting is not part of what a trace computes, so the const methods may count.
+    mutable RenderStats stats_;
 };
 
 // Renders every pixel of the scene's viewer. Rows are shared among threads, and each pixel
-// depends on nothing else, so the result is the same whatever the number of threads.
-Raster render(const Scene& scene, const RenderOptions& options);
+// depends on nothing else, so the result is the same whatever the number of threads. When
+// stats is given, the counts of every thread are added into it.
+Raster render(const Scene& scene, const RenderOptions& options, RenderStats* stats = nullptr);
 
 }  // namespace rt

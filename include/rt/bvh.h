@@ -1,0 +1,153 @@
+// A bounding volume hierarchy over boxes, written once and used twice: over the scene's
+// objects (object_index.h) and over the triangles inside a mesh. It knows nothing of what
+// the boxes hold: traversal calls back with each candidate's place in leaf order.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "rt/ray.h"
+
+namespace rt {
+
+// One node of the flattened tree: 32 bytes, two to a cache line. Boxes are floats rounded
+// outward, so a node's box always holds everything below it.
+struct BvhNode {
+    float min[3];
+    float max[3];
+    // In a leaf, the first of its primitives in leaf order; in an interior node, the index of
+    // the second child (the first child is always the next node).
+    std::uint32_t offset;
+    std::uint16_t count;  // primitives in a leaf; 0 for an interior node
+    std::uint8_t axis;    // an interior node's split axis, which says which child is nearer
+    std::uint8_t unused;
+
+    bool is_leaf() const { return count != 0; }
+};
+static_assert(sizeof(BvhNode) == 32);
+
+// A ray prepared for many box tests: the reciprocal of its direction and its signs.
+class BoxRay {
+  public:
+    explicit BoxRay(const Ray& ray);
+
+    // True when the ray passes through the node's box somewhere in [t_min, t_max]. The interval is
+    // widened by a relative margin so that a hit a primitive computes at the box's very edge, or at
+    // exactly t_max (a tie), is never pruned. A ray parallel to a slab whose origin lies on the
+    // slab's plane makes 0 * inf = NaN there; the comparisons below then ignore that slab, which
+    // only keeps more.
+    bool enters(const BvhNode& node, double t_min, double t_max) const {
+        double near = -kInfinity, far = kInfinity;
+        for (int k = 0; k < 3; ++k) {
+            const double lo = (static_cast<double>(node.min[k]) - origin_[k]) * inverse_[k];
+            const double hi = (static_cast<double>(node.max[k]) - origin_[k]) * inverse_[k];
+            const double slab_near = negative_[k] ? hi : lo;
+            const double slab_far = negative_[k] ? lo : hi;
+            if (slab_near > near) near = slab_near;
+            if (slab_far < far) far = slab_far;
+        }
+        near -= kMargin * std::fabs(near);
+        far += kMargin * std::fabs(far);
+        return near <= far && near <= t_max && far >= t_min;
+    }
+    bool nearer_child_is_second(const BvhNode& node) const { return negative_[node.axis]; }
+
+  private:
+    static constexpr double kMargin = 1e-9;
+    double origin_[3];
+    double inverse_[3];
+    bool negative_[3];
+};
+
+class Bvh {
+  public:
+    // The most primitives a leaf holds; a leaf's count must fit its 16 bits.
+    static constexpr std::size_t kMaxLeafSize = 8;
+    // Deeper than this, nodes split at the median of their primitives, so traversal's
+    // fixed stack can never overflow (see kStackSize).
+    static constexpr int kMaxSahDepth = 48;
+
+    Bvh() = default;
+    // Builds over the given boxes, which must be finite, with binned SAH splits. Primitive i
+    // is the one with boxes[i]; order() lists them as the leaves hold them.
+    explicit Bvh(std::span<const Bounds> boxes);
+
+    bool empty() const { return nodes_.empty(); }
+    std::span<const BvhNode> nodes() const { return nodes_; }
+    std::span<const std::uint32_t> order() const { return order_; }
+    // Gives up the leaf order, for an owner that stores its primitives in that order itself.
+    std::vector<std::uint32_t> take_order() { return std::move(order_); }
+    // The box of everything (empty when nothing was built).
+    Bounds bounds() const;
+
+    // Calls visit(position) for each primitive (its place in leaf order) whose leaf the ray
+    // may reach in [t_min, t_max], nearer leaves first. visit may lower t_max, the best hit
+    // so far, which prunes the rest; a leaf entered exactly at t_max is still visited, so
+    // the caller can break ties.
+    template <class Visit>
+    void closest(const Ray& ray, double t_min, double& t_max, Visit&& visit) const;
+    // Calls visit(position) for candidates in [t_min, t_max] until one returns true; returns
+    // whether one did.
+    template <class Visit>
+    bool any(const Ray& ray, double t_min, double t_max, Visit&& visit) const;
+
+  private:
+    // With at most kMaxSahDepth SAH levels and median splits below them, no path is longer
+    // than kMaxSahDepth + 32 nodes for fewer than 2^32 primitives; the stack holds one
+    // entry per level.
+    static constexpr int kStackSize = kMaxSahDepth + 40;
+
+    template <class Leaf>
+    void walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) const;
+
+    std::vector<BvhNode> nodes_;
+    std::vector<std::uint32_t> order_;
+};
+
+// Nodes are visited depth first, the nearer child first (by the ray's sign on the node's
+// split axis), the other pushed on a small fixed stack. leaf(node) returns true to stop.
+template <class Leaf>
+void Bvh::walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) const {
+    if (nodes_.empty()) return;
+    const BoxRay box_ray(ray);
+    std::uint32_t stack[kStackSize];
+    int top = 0;
+    std::uint32_t current = 0;
+    for (;;) {
+        const BvhNode& node = nodes_[current];
+        // t_max is read afresh for every node: a hit found in an earlier leaf prunes here.
+        if (box_ray.enters(node, t_min, t_max)) {
+            if (!node.is_leaf()) {
+                const bool second_nearer = box_ray.nearer_child_is_second(node);
+                stack[top++] = second_nearer ? current + 1 : node.offset;
+                current = second_nearer ? node.offset : current + 1;
+                continue;
+            }
+            if (leaf(node)) return;
+        }
+        if (top == 0) return;
+        current = stack[--top];
+    }
+}
+
+template <class Visit>
+void Bvh::closest(const Ray& ray, double t_min, double& t_max, Visit&& visit) const {
+    walk(ray, t_min, t_max, [&](const BvhNode& node) {
+        for (std::uint32_t i = node.offset, end = node.offset + node.count; i < end; ++i) visit(i);
+        return false;
+    });
+}
+
+template <class Visit>
+bool Bvh::any(const Ray& ray, double t_min, double t_max, Visit&& visit) const {
+    bool found = false;
+    walk(ray, t_min, t_max, [&](const BvhNode& node) {
+        for (std::uint32_t i = node.offset, end = node.offset + node.count; i < end; ++i)
+            if (visit(i)) return found = true;
+        return false;
+    });
+    return found;
+}
+
+}  // namespace rt
