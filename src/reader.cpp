@@ -253,6 +253,7 @@ Scene SceneReader::read_scene() {
     bool have_viewer = false;
     while (!lexer_.peek().at_end()) read_top_level_object(scene, have_viewer);
     if (!have_viewer) fail(lexer_.peek().where, "no viewer (102) in the scene; one is required");
+    scene.skipped_triangles = skipped_triangles_;
     return scene;
 }
 

@@ -57,6 +57,10 @@ class SceneReader {
     SurfacePtr surface();
     Light light(std::string_view what);
 
+    // A mesh reports the zero-area triangles it skipped; the scene carries the total.
+    void count_skipped_triangles(std::size_t count) { skipped_triangles_ += count; }
+    std::size_t skipped_triangles() const { return skipped_triangles_; }
+
     // Where the next token starts: read it before a field to report errors about that field.
     Location next_location() { return lexer_.peek().where; }
     [[noreturn]] void fail(Location where, std::string_view message) const;
@@ -85,6 +89,7 @@ class SceneReader {
     SurfacePtr default_surface_;
     std::map<std::filesystem::path, std::shared_ptr<const Image>> textures_;
     int depth_ = 0;
+    std::size_t skipped_triangles_ = 0;
 };
 
 // A number as messages show it (%g).
