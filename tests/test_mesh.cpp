@@ -418,3 +418,22 @@ TEST(counts_and_limits) {
         scene_error(join(kTestViewer, "14 3 1  1e100 0 0  0 1e100 0  0 0 -1e100  0 1 2", kSurface)),
         std::string());
 }
+
+TEST(the_documented_tetrahedron_faces_outward) {
+    // The example in docs/format.md: every face's normal points away from the centroid.
+    const Shape tetrahedron =
+        parse_shape("14 4 4  0 0 0  1 0 0  0 1 0  0 0 1  0 2 1  0 3 2  0 1 3  1 2 3");
+    const Vec3 centroid(0.25, 0.25, 0.25);
+    Random random(4);
+    int hits = 0;
+    for (int i = 0; i < 500; ++i) {
+        const Ray ray = ray_from_to(centroid + random.unit_vector() * 3, centroid);
+        const auto hit = first_hit(tetrahedron, ray);
+        CHECK(hit.has_value());
+        if (!hit) continue;
+        ++hits;
+        const Vec3 p = ray.at(hit->t);
+        CHECK(dot(tetrahedron.normal(p, *hit), p - centroid) > 0);
+    }
+    CHECK_EQ(hits, 500);
+}

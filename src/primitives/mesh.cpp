@@ -27,7 +27,7 @@ constexpr long kMaxCount = 2'147'483'647;
 // they are read beyond it: the counts alone never decide how much is allocated.
 constexpr long kMaxReserve = 1L << 16;
 // The largest vertex coordinate, in absolute value. Below it, the products of the
-// intersection test (of differences of coordinates, up to the fourth power) cannot overflow
+// intersection test (of differences of coordinates, up to the third power) cannot overflow
 // a double, even for rays from as far as this.
 constexpr double kMaxCoordinate = 1e100;
 
