@@ -7,9 +7,12 @@
 // in the file (16 bytes), in the order the leaves of the mesh's own hierarchy hold them. Rays
 // meet triangles by the watertight test (watertight.h), so none slips through a shared edge.
 #include <algorithm>
+#include <array>
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "primitives/primitives.h"
@@ -125,6 +128,7 @@ ShapeData read(SceneReader& reader) {
         const Vec3& v0 = mesh.vertices[index[0]];
         const Vec3& v1 = mesh.vertices[index[1]];
         const Vec3& v2 = mesh.vertices[index[2]];
+        // Zero area: no normal in double precision, so nothing for a ray to hit.
         if (face_normal(v0, v1, v2) == Vec3{}) {
             ++skipped;
             continue;
