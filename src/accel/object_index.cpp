@@ -10,6 +10,9 @@ namespace rt {
 
 namespace {
 
+// How far past the best hit so far an object is asked for hits (relative).
+constexpr double kTieSlack = 1e-9;
+
 bool finite_box(const Bounds& b) {
     for (int k = 0; k < 3; ++k)
         if (!std::isfinite(b.min[k]) || !std::isfinite(b.max[k]) || !(b.min[k] <= b.max[k]))
@@ -44,13 +47,15 @@ bool ObjectIndex::closest(const Ray& ray, Interval range, Found& found) const {
     constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
     double best = range.t_max;
     std::uint32_t best_object = kNone;
-    // An object earlier in the file than the best so far also wins at the same distance,
-    // so it is asked for hits up to just past the best.
     auto test = [&](const Entry& e) {
-        const bool earlier = best_object != kNone && e.object < best_object;
-        const double limit = earlier ? std::nextafter(best, kInfinity) : best;
+        // The linear scan asks each object with its own best so far, and an intersect's
+        // answer near t_max can depend on t_max by a rounding (an affine scales it), so each
+        // object is asked a little past the best, and the answer is judged here: nearer wins,
+        // and at the same distance the object earlier in the file.
+        const double limit = best_object == kNone ? best : best + kTieSlack * best;
         Hit hit;
         if (!e.intersect(e.data, ray, {range.t_min, limit}, hit)) return;
+        if (!(hit.t < best || (hit.t == best && e.object < best_object))) return;
         best = hit.t;
         best_object = e.object;
         found = {e.object, hit};
