@@ -19,7 +19,8 @@ using namespace rt_test;
 namespace {
 
 Bounds node_box(const BvhNode& n) {
-    return {{n.min[0], n.min[1], n.min[2]}, {n.max[0], n.max[1], n.max[2]}};
+    const auto& b = n.bound;
+    return {{b[0][0], b[0][1], b[0][2]}, {b[1][0], b[1][1], b[1][2]}};
 }
 
 bool box_holds(const Bounds& outer, const Bounds& inner) {

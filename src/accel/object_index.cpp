@@ -26,7 +26,7 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects) : object_count_(object
     if (objects.size() > std::numeric_limits<std::uint32_t>::max())
         throw std::length_error("too many objects for the hierarchy");
     std::vector<Bounds> boxes;
-    std::vector<Entry> bounded;
+    std::vector<Entry> bounded, unbounded;
     for (std::uint32_t i = 0; i < objects.size(); ++i) {
         const Shape& shape = objects[i].shape;
         const Entry entry{shape.type->intersect, shape.data.get(), i};
@@ -35,12 +35,14 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects) : object_count_(object
             boxes.push_back(box);
             bounded.push_back(entry);
         } else {
-            unbounded_.push_back(entry);
+            unbounded.push_back(entry);
         }
     }
     bvh_ = Bvh(boxes);
-    bounded_.reserve(bounded.size());
-    for (const std::uint32_t i : bvh_.take_order()) bounded_.push_back(bounded[i]);
+    entries_.reserve(objects.size());
+    for (const std::uint32_t i : bvh_.take_order()) entries_.push_back(bounded[i]);
+    bounded_count_ = entries_.size();
+    entries_.insert(entries_.end(), unbounded.begin(), unbounded.end());
 }
 
 bool ObjectIndex::closest(const Ray& ray, Interval range, Found& found) const {
@@ -61,18 +63,22 @@ bool ObjectIndex::closest(const Ray& ray, Interval range, Found& found) const {
         found = {e.object, hit};
     };
     // The unbounded objects first: a floor under everything prunes much of the tree.
-    for (const Entry& e : unbounded_) test(e);
-    bvh_.closest(ray, range.t_min, best, [&](std::uint32_t i) { test(bounded_[i]); });
+    for (std::size_t i = bounded_count_; i < entries_.size(); ++i) test(entries_[i]);
+    bvh_.closest(ray, range.t_min, best, [&](std::uint32_t i) { test(entries_[i]); });
     return best_object != kNone;
 }
 
-bool ObjectIndex::any(const Ray& ray, Interval range) const {
+bool ObjectIndex::any(const Ray& ray, Interval range, Blocker* last) const {
     Hit hit;
-    auto blocks = [&](const Entry& e) { return e.intersect(e.data, ray, range, hit); };
-    for (const Entry& e : unbounded_)
-        if (blocks(e)) return true;
-    return bvh_.any(ray, range.t_min, range.t_max,
-                    [&](std::uint32_t i) { return blocks(bounded_[i]); });
+    auto blocks = [&](std::uint32_t i) {
+        if (!entries_[i].intersect(entries_[i].data, ray, range, hit)) return false;
+        if (last != nullptr) last->entry = i;
+        return true;
+    };
+    if (last != nullptr && last->entry < entries_.size() && blocks(last->entry)) return true;
+    for (auto i = static_cast<std::uint32_t>(bounded_count_); i < entries_.size(); ++i)
+        if (blocks(i)) return true;
+    return bvh_.any(ray, range.t_min, range.t_max, blocks);
 }
 
 }  // namespace rt
