@@ -26,8 +26,9 @@ struct Scene {
     // Zero-area triangles that meshes left out (they are accepted, not errors).
     std::size_t skipped_triangles = 0;
 
-    // Builds the hierarchy over the objects; read_scene() and read_scene_file() call it.
-    void build_index() { index = ObjectIndex(objects); }
+    // Builds the hierarchy over the objects on up to `threads` threads (the same hierarchy
+    // for any number); read_scene() and read_scene_file() call it.
+    void build_index(int threads = 1) { index = ObjectIndex(objects, threads); }
 };
 
 }  // namespace rt
