@@ -44,8 +44,9 @@ std::string format_number(double value) {
     return text;
 }
 
-SceneReader::SceneReader(std::istream& in, std::string name, std::filesystem::path base_dir)
-    : lexer_(in, std::move(name)), base_dir_(std::move(base_dir)) {}
+SceneReader::SceneReader(std::istream& in, std::string name, std::filesystem::path base_dir,
+                         int threads)
+    : lexer_(in, std::move(name)), base_dir_(std::move(base_dir)), threads_(threads) {}
 
 void SceneReader::fail(Location where, std::string_view message) const {
     lexer_.fail(where, message);
@@ -267,7 +268,7 @@ Scene SceneReader::read_scene() {
 
 Scene read_scene(std::istream& in, const std::string& name, const std::filesystem::path& base_dir,
                  int threads) {
-    SceneReader reader(in, name, base_dir);
+    SceneReader reader(in, name, base_dir, threads);
     Scene scene = reader.read_scene();
     scene.build_index(threads);
     return scene;

@@ -437,3 +437,25 @@ TEST(the_documented_tetrahedron_faces_outward) {
     }
     CHECK_EQ(hits, 500);
 }
+
+TEST(a_large_mesh_is_the_same_built_on_several_threads) {
+    // Large enough (over 100,000 triangles) that its hierarchy is built on two threads.
+    Random random(2);
+    const std::string text = join(kTestViewer, height_field(240, random).text(), kSurface);
+    std::istringstream one_in(text), two_in(text);
+    const Scene one = read_scene(one_in, "test.in", {}, 1);
+    const Scene two = read_scene(two_in, "test.in", {}, 2);
+    const Shape &a = one.objects.at(0).shape, &b = two.objects.at(0).shape;
+    int hits = 0;
+    for (int i = 0; i < 2000; ++i) {
+        const Ray ray =
+            ray_from_to(random.in_box(4), Vec3(random.uniform(-2, 2), random.uniform(-2, 2), 0));
+        const auto ha = first_hit(a, ray), hb = first_hit(b, ray);
+        CHECK_EQ(ha.has_value(), hb.has_value());
+        if (!ha || !hb) continue;
+        ++hits;
+        CHECK_EQ(ha->t, hb->t);
+        CHECK_EQ(ha->part, hb->part);
+    }
+    CHECK(hits > 1500);
+}

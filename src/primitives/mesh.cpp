@@ -151,7 +151,7 @@ ShapeData read(SceneReader& reader) {
     reader.count_skipped_triangles(skipped);
 
     // The hierarchy numbers triangles in leaf order; store them in that order.
-    mesh.bvh = Bvh(boxes);
+    mesh.bvh = Bvh(boxes, reader.threads());
     boxes = {};
     mesh.triangles.reserve(triangles.size());
     for (const std::uint32_t i : mesh.bvh.take_order()) mesh.triangles.push_back(triangles[i]);
