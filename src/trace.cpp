@@ -56,9 +56,8 @@ bool Tracer::blocked(const Ray& ray, double distance, ObjectIndex::Blocker* last
     ++stats_.shadow_rays;
     const Interval range{hit_tolerance(ray.origin), distance};
     if (options_.accelerate) return scene_.index.any(ray, range, last);
-    Hit hit;
     return std::any_of(scene_.objects.begin(), scene_.objects.end(),
-                       [&](const Object& o) { return o.shape.intersect(ray, range, hit); });
+                       [&](const Object& o) { return o.shape.intersect_any(ray, range); });
 }
 
 Spectrum Tracer::direct_light(const Vec3& point, const Vec3& facing_normal, const Vec3& reflected,

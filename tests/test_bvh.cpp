@@ -256,7 +256,7 @@ class SceneWriter {
     // One primitive (ID and numbers, no surface) around a random place.
     void primitive(int nesting) {
         const double h = 10;  // objects lie in [-h, h]^3
-        const int kinds = nesting < 2 ? 12 : 11;
+        const int kinds = nesting < 2 ? 13 : 12;
         switch (random_.next() % static_cast<std::uint64_t>(kinds)) {
             case 0:
                 text_ << "1 " << random_.uniform(0.2, 1.5);
@@ -342,6 +342,20 @@ class SceneWriter {
                 text_ << "1 " << random_.uniform(0.05, 0.4);
                 point(h);
                 break;
+            case 11: {  // a small mesh: a fan of triangles around a shared vertex
+                const int n = 3 + static_cast<int>(random_.next() % 8);
+                const Frame f = frame_around(direction());
+                const Vec3 c{coordinate(h), coordinate(h), coordinate(h)};
+                text_ << "14 " << n + 1 << ' ' << n;
+                vec(c);
+                for (int v = 0; v < n; ++v) {
+                    const double a = 2 * 3.141592653589793 * v / n;
+                    vec(c + random_.uniform(0.3, 1.5) * (std::cos(a) * f.e1 + std::sin(a) * f.e2) +
+                        random_.uniform(-0.5, 0.5) * f.e3);
+                }
+                for (int v = 0; v < n; ++v) text_ << " 0 " << v + 1 << ' ' << (v + 1) % n + 1;
+                break;
+            }
             default: {  // an affine around any of the above, or around another affine
                 text_ << "7";
                 point(h);
@@ -424,6 +438,32 @@ TEST(same_nearest_hit_and_shadows_as_the_linear_scan) {
         Random random(seed * 101);
         CHECK_EQ(disagreements(scene, random, 4000), 0);
     }
+}
+
+TEST(any_hit_agrees_with_the_nearest_hit_for_every_primitive) {
+    const Scene scene = parse_scene(SceneWriter(11).scene(1500, 8));
+    Random random(12);
+    int differ = 0, hits = 0;
+    for (const Object& object : scene.objects) {
+        // Rays from anywhere toward the object's box (near its centre, and past its edges).
+        const Bounds box = object.shape.bounds();
+        const bool bounded = std::isfinite(box.min.x + box.max.x + box.min.y + box.max.y);
+        const Vec3 centre = bounded ? (box.min + box.max) * 0.5 : Vec3{};
+        const double reach = bounded ? length(box.max - box.min) : 10;
+        for (int r = 0; r < 40; ++r) {
+            const Vec3 origin = random.in_box(12);
+            const Vec3 target = centre + random.in_box(0.5 * reach);
+            if (!(length(target - origin) > 0)) continue;
+            const Ray ray{origin, normalized(target - origin)};
+            const Interval range{random.uniform(0, 1e-3), random.uniform(0.5, 40)};
+            Hit hit;
+            const bool nearest = object.shape.intersect(ray, range, hit);
+            hits += nearest ? 1 : 0;
+            if (nearest != object.shape.intersect_any(ray, range)) ++differ;
+        }
+    }
+    CHECK_EQ(differ, 0);
+    CHECK(hits > 5000);  // about 8,600: the rays do reach the objects
 }
 
 TEST(same_image_as_the_linear_scan_on_any_thread_count) {

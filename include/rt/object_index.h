@@ -51,6 +51,7 @@ class ObjectIndex {
     // What a test needs, stored contiguously in the order the leaves visit them.
     struct Entry {
         IntersectFn* intersect;
+        IntersectFn* intersect_any;  // for shadow rays (Shape::any_hit_function)
         const void* data;
         std::uint32_t object;
     };

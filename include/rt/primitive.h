@@ -46,6 +46,10 @@ struct PrimitiveType {
     InsideFn* inside;  // nullptr where the primitive encloses no volume (disk, triangle, ...)
     // nullptr (the usual case) when every instance with an inside function has an inside.
     HasInsideFn* has_inside = nullptr;
+    // For shadow rays: true when any part of the primitive lies along the ray in range, with
+    // `hit` left undefined, so a primitive made of many (a mesh) can stop at the first.
+    // nullptr (the usual case) where intersect answers that as fast.
+    IntersectFn* intersect_any = nullptr;
 };
 
 // A primitive type with its parameters: what the scene stores for each primitive.
@@ -55,6 +59,14 @@ struct Shape {
 
     bool intersect(const Ray& ray, Interval range, Hit& hit) const {
         return type->intersect(data.get(), ray, range, hit);
+    }
+    IntersectFn* any_hit_function() const {
+        return type->intersect_any != nullptr ? type->intersect_any : type->intersect;
+    }
+    // Whether anything of the primitive lies along the ray in range.
+    bool intersect_any(const Ray& ray, Interval range) const {
+        Hit scratch;
+        return any_hit_function()(data.get(), ray, range, scratch);
     }
     Vec3 normal(const Vec3& point, const Hit& hit) const {
         return type->normal(data.get(), point, hit);

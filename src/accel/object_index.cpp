@@ -30,7 +30,7 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
     std::vector<Entry> bounded, unbounded;
     for (std::uint32_t i = 0; i < objects.size(); ++i) {
         const Shape& shape = objects[i].shape;
-        const Entry entry{shape.type->intersect, shape.data.get(), i};
+        const Entry entry{shape.type->intersect, shape.any_hit_function(), shape.data.get(), i};
         const Bounds box = shape.bounds();
         if (finite_box(box)) {
             boxes.push_back(box);
@@ -72,7 +72,7 @@ bool ObjectIndex::closest(const Ray& ray, Interval range, Found& found) const {
 bool ObjectIndex::any(const Ray& ray, Interval range, Blocker* last) const {
     Hit hit;
     auto blocks = [&](std::uint32_t i) {
-        if (!entries_[i].intersect(entries_[i].data, ray, range, hit)) return false;
+        if (!entries_[i].intersect_any(entries_[i].data, ray, range, hit)) return false;
         if (last != nullptr) last->entry = i;
         return true;
     };

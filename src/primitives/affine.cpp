@@ -3,6 +3,7 @@
 // (section 2.7 of the original): a world ray is carried into that frame, intersected there,
 // and the inner normal is carried back by the transpose of F^-1.
 #include <cmath>
+#include <optional>
 
 #include "affine_frame.h"
 #include "primitives/primitives.h"
@@ -25,21 +26,39 @@ ShapeData read(SceneReader& reader) {
     return std::make_shared<const Affine>(Affine{frame, std::move(inner), box});
 }
 
-bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
-    const auto& a = *static_cast<const Affine*>(shape);
-    // The local ray M(o - O) + t' Md/|Md|, with t' = t |Md|: the interval scales the same way.
+namespace {
+// A world ray carried into the inner primitive's frame: M(o - O) + t' Md/|Md|, where the
+// local distance t' is t |Md|, so a range scales by the same factor.
+struct LocalRay {
+    Ray ray;
+    double scale;
+    Interval range(Interval world) const { return {world.t_min * scale, world.t_max * scale}; }
+};
+
+std::optional<LocalRay> to_local(const Affine& a, const Ray& ray) {
     const Vec3 local_direction = a.frame.to_local_direction(ray.direction);
     const double scale = length(local_direction);
-    if (!(scale > 0) || !std::isfinite(scale)) return false;
-    const Ray local{a.frame.to_local_point(ray.origin), local_direction / scale};
+    if (!(scale > 0) || !std::isfinite(scale)) return std::nullopt;
+    return LocalRay{{a.frame.to_local_point(ray.origin), local_direction / scale}, scale};
+}
+}  // namespace
+
+bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
+    const auto& a = *static_cast<const Affine*>(shape);
+    const auto local = to_local(a, ray);
     Hit local_hit;
-    if (!a.inner.intersect(local, {range.t_min * scale, range.t_max * scale}, local_hit))
-        return false;
-    const double t = local_hit.t / scale;
+    if (!local || !a.inner.intersect(local->ray, local->range(range), local_hit)) return false;
+    const double t = local_hit.t / local->scale;
     // Dividing back can round just outside the range the inner primitive kept to.
     if (!range.contains(t)) return false;
     hit = {t, local_hit.part};
     return true;
+}
+
+bool intersect_any(const void* shape, const Ray& ray, Interval range, Hit&) {
+    const auto& a = *static_cast<const Affine*>(shape);
+    const auto local = to_local(a, ray);
+    return local && a.inner.intersect_any(local->ray, local->range(range));
 }
 
 Vec3 normal(const void* shape, const Vec3& point, const Hit& hit) {

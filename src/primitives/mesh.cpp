@@ -184,6 +184,17 @@ bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
     return true;
 }
 
+bool intersect_any(const void* shape, const Ray& ray, Interval range, Hit&) {
+    const auto& m = *static_cast<const Mesh*>(shape);
+    const TriangleRay triangle_ray(ray);
+    return m.bvh.any(ray, range.t_min, range.t_max, [&](std::uint32_t position) {
+        const Triangle& tri = m.triangles[position];
+        double t = 0;
+        return triangle_ray.crosses(m.vertex(tri, 0), m.vertex(tri, 1), m.vertex(tri, 2), t) &&
+               range.contains(t);
+    });
+}
+
 Vec3 normal(const void* shape, const Vec3&, const Hit& hit) {
     const auto& m = *static_cast<const Mesh*>(shape);
     const Triangle& tri = m.triangles[static_cast<std::size_t>(hit.part)];

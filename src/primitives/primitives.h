@@ -51,6 +51,7 @@ BoundsFn bounds;
 namespace rt::affine {
 ReadShapeFn read;
 IntersectFn intersect;
+IntersectFn intersect_any;
 NormalFn normal;
 BoundsFn bounds;
 InsideFn inside;
@@ -97,6 +98,7 @@ InsideFn inside;
 namespace rt::mesh {
 ReadShapeFn read;
 IntersectFn intersect;
+IntersectFn intersect_any;
 NormalFn normal;
 BoundsFn bounds;
 }  // namespace rt::mesh

@@ -21,7 +21,7 @@ constexpr std::array kPrimitiveTypes{
                   parallelogram::normal, parallelogram::bounds, nullptr},
     // Solid exactly when its inner primitive is, so it says so per instance.
     PrimitiveType{7, "affine", affine::read, affine::intersect, affine::normal, affine::bounds,
-                  affine::inside, affine::has_inside},
+                  affine::inside, affine::has_inside, affine::intersect_any},
     PrimitiveType{8, "cone", cone::read, cone::intersect, cone::normal, cone::bounds, nullptr},
     PrimitiveType{9, "cylinder", cylinder::read, cylinder::intersect, cylinder::normal,
                   cylinder::bounds, nullptr},
@@ -30,7 +30,9 @@ constexpr std::array kPrimitiveTypes{
     PrimitiveType{11, "polygon", polygon::read, polygon::intersect, polygon::normal,
                   polygon::bounds, nullptr},
     PrimitiveType{12, "box", box::read, box::intersect, box::normal, box::bounds, box::inside},
-    PrimitiveType{14, "mesh", mesh::read, mesh::intersect, mesh::normal, mesh::bounds, nullptr},
+    // A shadow ray stops at the first triangle it meets.
+    PrimitiveType{14, "mesh", mesh::read, mesh::intersect, mesh::normal, mesh::bounds, nullptr,
+                  nullptr, mesh::intersect_any},
 };
 
 static_assert(strictly_sorted_by_id(kPrimitiveTypes), "rows sorted by ID, each ID once");
