@@ -176,7 +176,7 @@ std::array<Vec, 2> knot(double t) {
 Scene mesh(long count, int size) {
     Scene scene;
     scene.depth = 3;
-    scene.camera = camera({0, 6.5, -7.5}, {0, 1.2, 0}, 55, size);
+    scene.camera = camera({0, 6.5, -7.5}, {0, 1.2, 0}, 60, size);
     add_lighting(scene);
     scene.planes.push_back(floor({{0.5, 0.55, 0.6}, 0.15, 10, 0.8}));
     // A ring of `around` vertices every step along the knot; two triangles per quad.
