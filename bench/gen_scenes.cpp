@@ -101,7 +101,7 @@ struct Light {
 
 struct Scene {
     std::string name;
-    int depth = 3;  // rt's -d
+    int depth = 0;  // rt's -d
     Camera camera;
     Vec ambient;
     std::vector<Light> lights;
@@ -120,13 +120,17 @@ Camera camera(Vec eye, Vec look_at, double fov_degrees, int size) {
     return {eye, look_at, half_width * right, half_width * up, size, size};
 }
 
-// Light from the upper left and, dimmer, from the right, with a bluish sky.
-void add_lighting(Scene& scene) {
+// A scene with a floor (the plane y = 0), light from the upper left and, dimmer, from the
+// right, and a bluish sky; the scene is meant to be rendered to `depth`.
+Scene lit_scene(int depth, const Camera& view, const Finish& floor_finish) {
+    Scene scene;
+    scene.depth = depth;
+    scene.camera = view;
     scene.ambient = {0.15, 0.18, 0.24};
     scene.lights = {{{-30, 40, -25}, {0.8, 0.8, 0.75}}, {{35, 30, -10}, {0.45, 0.45, 0.5}}};
+    scene.planes.push_back({{0, 1, 0}, 0, floor_finish});
+    return scene;
 }
-
-Plane floor(Finish finish) { return {{0, 1, 0}, 0, finish}; }
 
 Finish random_finish(Random& random) {
     return {{random.uniform(0.2, 1), random.uniform(0.2, 1), random.uniform(0.2, 1)},
@@ -139,11 +143,8 @@ Finish random_finish(Random& random) {
 // layer they float in with it, so every count covers the same share of the floor: a larger
 // count is the same picture with finer grain, seen by the same camera.
 Scene spheres(long count, int size) {
-    Scene scene;
-    scene.depth = 3;
-    scene.camera = camera({0, 18, -15}, {0, 0, 1}, 45, size);
-    add_lighting(scene);
-    scene.planes.push_back(floor({{0.6, 0.6, 0.6}, 0.1, 10, 0.8}));
+    Scene scene =
+        lit_scene(3, camera({0, 18, -15}, {0, 0, 1}, 45, size), {{0.6, 0.6, 0.6}, 0.1, 10, 0.8});
     Random random(1);
     const double radius = 0.085 * std::sqrt(1e4 / static_cast<double>(count));
     constexpr long kFinishes = 16;
@@ -174,11 +175,8 @@ std::array<Vec, 2> knot(double t) {
 
 // A ribbed tube round a torus knot, about `count` triangles, hovering over a floor.
 Scene mesh(long count, int size) {
-    Scene scene;
-    scene.depth = 3;
-    scene.camera = camera({0, 6.5, -7.5}, {0, 1.2, 0}, 60, size);
-    add_lighting(scene);
-    scene.planes.push_back(floor({{0.5, 0.55, 0.6}, 0.15, 10, 0.8}));
+    Scene scene = lit_scene(3, camera({0, 6.5, -7.5}, {0, 1.2, 0}, 60, size),
+                            {{0.5, 0.55, 0.6}, 0.15, 10, 0.8});
     // A ring of `around` vertices every step along the knot; two triangles per quad.
     const std::size_t around =
         std::max<std::size_t>(3, std::lround(std::sqrt(static_cast<double>(count) / 50)));
@@ -213,13 +211,10 @@ Scene mesh(long count, int size) {
 
 // A square grid of mirror spheres on a mirror floor: many bounces per pixel.
 Scene mirror(long count, int size) {
-    Scene scene;
-    scene.depth = 7;
     const long side = std::max(1L, std::lround(std::sqrt(static_cast<double>(count))));
     const double spacing = 2.2, extent = spacing * static_cast<double>(side - 1) / 2;
-    scene.camera = camera({0, extent + 3, -1.4 * extent - 5}, {0, 0, 0.5}, 50, size);
-    add_lighting(scene);
-    scene.planes.push_back(floor({{0.5, 0.5, 0.55}, 0.5, 60, 0.5}));
+    Scene scene = lit_scene(7, camera({0, extent + 3, -1.4 * extent - 5}, {0, 0, 0.5}, 50, size),
+                            {{0.5, 0.5, 0.55}, 0.5, 60, 0.5});
     Random random(2);
     for (long i = 0; i < side; ++i) {
         for (long j = 0; j < side; ++j) {
@@ -320,19 +315,16 @@ void write_pov(std::ostream& out, const Scene& s) {
     }
 }
 
-// "10k" is 10000, "1m" a million.
+// "10k" is 10000, "1m" a million; at most 100 million.
 long parse_count(const std::string& text) {
+    constexpr long kMaxCount = 100'000'000;
     std::size_t used = 0;
-    long count = std::stol(text, &used);
+    const long count = std::stol(text, &used);
     const std::string suffix = text.substr(used);
-    if (suffix == "k")
-        count *= 1000;
-    else if (suffix == "m")
-        count *= 1000000;
-    else if (!suffix.empty())
-        throw std::invalid_argument("bad count suffix");
-    if (count < 1) throw std::invalid_argument("count below 1");
-    return count;
+    const long scale = suffix == "k" ? 1000 : suffix == "m" ? 1000000 : suffix.empty() ? 1 : 0;
+    if (scale == 0 || count < 1 || count > kMaxCount / scale)
+        throw std::invalid_argument("bad count " + text);
+    return count * scale;
 }
 
 Scene make_scene(const std::string& name, int size) {
