@@ -24,7 +24,7 @@ std::optional<Vec3> refract(const Vec3& incoming, const Vec3& normal, double eta
 }
 
 Tracer::Tracer(const Scene& scene, const RenderOptions& options)
-    : scene_(scene), options_(options) {
+    : scene_(scene), options_(options), last_blockers_(scene.lights.size()) {
     if (options_.accelerate && !scene_.index.covers(scene_.objects.size()))
         throw std::logic_error("Tracer: the scene's index was not built (Scene::build_index)");
 }
@@ -49,9 +49,13 @@ std::optional<SceneHit> Tracer::closest_hit(const Ray& ray) const {
 }
 
 bool Tracer::blocked(const Ray& ray, double distance) const {
+    return blocked(ray, distance, nullptr);
+}
+
+bool Tracer::blocked(const Ray& ray, double distance, ObjectIndex::Blocker* last) const {
     ++stats_.shadow_rays;
     const Interval range{hit_tolerance(ray.origin), distance};
-    if (options_.accelerate) return scene_.index.any(ray, range);
+    if (options_.accelerate) return scene_.index.any(ray, range, last);
     Hit hit;
     return std::any_of(scene_.objects.begin(), scene_.objects.end(),
                        [&](const Object& o) { return o.shape.intersect(ray, range, hit); });
@@ -60,13 +64,15 @@ bool Tracer::blocked(const Ray& ray, double distance) const {
 Spectrum Tracer::direct_light(const Vec3& point, const Vec3& facing_normal, const Vec3& reflected,
                               const Material& m, double ks) const {
     Spectrum total(0.0);
-    for (const Light& light : scene_.lights) {
+    for (std::size_t l = 0; l < scene_.lights.size(); ++l) {
+        const Light& light = scene_.lights[l];
         const int samples = light.sample_count();
         for (int i = 0; i < samples; ++i) {
             const LightSample s = light.sample(point, i);
             const double facing = dot(facing_normal, s.direction);
             if (!(facing > 0) || s.intensity.is_black()) continue;
-            if (options_.shadows && blocked({point, s.direction}, s.distance)) continue;
+            if (options_.shadows && blocked({point, s.direction}, s.distance, &last_blockers_[l]))
+                continue;
             Spectrum term(0.0);
             if (options_.diffuse) term += m.colour * (m.kd * facing);
             const double highlight = dot(reflected, s.direction);

@@ -14,50 +14,47 @@ namespace rt {
 // One node of the flattened tree: 32 bytes, two to a cache line. Boxes are floats rounded
 // outward, so a node's box always holds everything below it.
 struct BvhNode {
-    float min[3];
-    float max[3];
+    float bound[2][3];  // [0] the min corner, [1] the max corner
     // In a leaf, the first of its primitives in leaf order; in an interior node, the index of
     // the second child (the first child is always the next node).
     std::uint32_t offset;
     std::uint16_t count;  // primitives in a leaf; 0 for an interior node
-    std::uint8_t axis;    // an interior node's split axis, which says which child is nearer
-    std::uint8_t unused;
+    std::uint16_t unused;
 
     bool is_leaf() const { return count != 0; }
 };
 static_assert(sizeof(BvhNode) == 32);
 
-// A ray prepared for many box tests: the reciprocal of its direction and its signs.
+// A ray prepared for many box tests: the reciprocal of its direction, and for each axis which
+// of a node's two bounds the ray meets first.
 class BoxRay {
   public:
     explicit BoxRay(const Ray& ray);
 
-    // True when the ray passes through the node's box somewhere in [t_min, t_max]. The interval is
-    // widened by a relative margin so that a hit a primitive computes at the box's very edge, or at
-    // exactly t_max (a tie), is never pruned. A ray parallel to a slab whose origin lies on the
-    // slab's plane makes 0 * inf = NaN there; the comparisons below then ignore that slab, which
-    // only keeps more.
-    bool enters(const BvhNode& node, double t_min, double t_max) const {
+    // Whether the ray passes through the node's box somewhere in [t_min, t_max]; if so,
+    // t_enter is where it enters. The interval is widened by a relative margin so that a hit
+    // a primitive computes at the box's very edge, or at exactly t_max (a tie), is never
+    // pruned. A ray parallel to a slab whose origin lies on the slab's plane makes 0 * inf =
+    // NaN there; the comparisons below then ignore that slab, which only keeps more.
+    bool enters(const BvhNode& node, double t_min, double t_max, double& t_enter) const {
         double near = -kInfinity, far = kInfinity;
         for (int k = 0; k < 3; ++k) {
-            const double lo = (static_cast<double>(node.min[k]) - origin_[k]) * inverse_[k];
-            const double hi = (static_cast<double>(node.max[k]) - origin_[k]) * inverse_[k];
-            const double slab_near = negative_[k] ? hi : lo;
-            const double slab_far = negative_[k] ? lo : hi;
+            const double slab_near = (node.bound[near_side_[k]][k] - origin_[k]) * inverse_[k];
+            const double slab_far = (node.bound[1 - near_side_[k]][k] - origin_[k]) * inverse_[k];
             if (slab_near > near) near = slab_near;
             if (slab_far < far) far = slab_far;
         }
         near -= kMargin * std::fabs(near);
         far += kMargin * std::fabs(far);
+        t_enter = near;
         return near <= far && near <= t_max && far >= t_min;
     }
-    bool nearer_child_is_second(const BvhNode& node) const { return negative_[node.axis]; }
 
   private:
     static constexpr double kMargin = 1e-9;
     double origin_[3];
     double inverse_[3];
-    bool negative_[3];
+    int near_side_[3];  // 0 where the ray meets the min bound first, 1 where the max
 };
 
 class Bvh {
@@ -105,29 +102,56 @@ class Bvh {
     std::vector<std::uint32_t> order_;
 };
 
-// Nodes are visited depth first, the nearer child first (by the ray's sign on the node's
-// split axis), the other pushed on a small fixed stack. leaf(node) returns true to stop.
+// Nodes are visited depth first. At an interior node both children's boxes are tested; the
+// ray goes on into the one it enters first, and the other waits on a small fixed stack with
+// its entry distance, so that it is dropped without another test once a hit nearer than
+// that has been found. leaf(node) returns true to stop.
 template <class Leaf>
 void Bvh::walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) const {
     if (nodes_.empty()) return;
     const BoxRay box_ray(ray);
-    std::uint32_t stack[kStackSize];
+    struct Pending {
+        std::uint32_t node;
+        double t_enter;
+    };
+    Pending stack[kStackSize];
     int top = 0;
     std::uint32_t current = 0;
+    double t_enter = 0;
+    if (!box_ray.enters(nodes_[0], t_min, t_max, t_enter)) return;
     for (;;) {
         const BvhNode& node = nodes_[current];
-        // t_max is read afresh for every node: a hit found in an earlier leaf prunes here.
-        if (box_ray.enters(node, t_min, t_max)) {
-            if (!node.is_leaf()) {
-                const bool second_nearer = box_ray.nearer_child_is_second(node);
-                stack[top++] = second_nearer ? current + 1 : node.offset;
-                current = second_nearer ? node.offset : current + 1;
+        if (!node.is_leaf()) {
+            std::uint32_t first = current + 1, second = node.offset;
+            double t_first = 0, t_second = 0;
+            const bool enters_first = box_ray.enters(nodes_[first], t_min, t_max, t_first);
+            const bool enters_second = box_ray.enters(nodes_[second], t_min, t_max, t_second);
+            if (enters_first && enters_second) {
+                if (t_second < t_first) {
+                    std::swap(first, second);
+                    std::swap(t_first, t_second);
+                }
+                stack[top++] = {second, t_second};
+                current = first;
                 continue;
             }
-            if (leaf(node)) return;
+            if (enters_first || enters_second) {
+                current = enters_first ? first : second;
+                continue;
+            }
+        } else if (leaf(node)) {
+            return;
         }
-        if (top == 0) return;
-        current = stack[--top];
+        // Pop until a node the ray enters before the best hit so far (t_max may have fallen
+        // since it was pushed).
+        for (;;) {
+            if (top == 0) return;
+            const Pending& next = stack[--top];
+            if (next.t_enter <= t_max) {
+                current = next.node;
+                break;
+            }
+        }
     }
 }
 

@@ -21,6 +21,12 @@ class ObjectIndex {
         Hit hit;
     };
 
+    // The object that last blocked a shadow ray toward one light. Neighbouring points are
+    // mostly shadowed by the same object, so any() tries it first.
+    struct Blocker {
+        std::uint32_t entry = kNoEntry;
+    };
+
     ObjectIndex() = default;
     // Objects with finite bounds go into the hierarchy; the rest (planes, and affines of
     // them) stay in a short list tested on every ray.
@@ -28,17 +34,20 @@ class ObjectIndex {
 
     // Whether this index was built over exactly `count` objects.
     bool covers(std::size_t count) const { return object_count_ == count; }
-    std::size_t bounded_count() const { return bounded_.size(); }
-    std::size_t unbounded_count() const { return unbounded_.size(); }
+    std::size_t bounded_count() const { return bounded_count_; }
+    std::size_t unbounded_count() const { return entries_.size() - bounded_count_; }
 
     // The nearest hit in range, exactly as testing every object in file order finds it: the
     // smallest distance, and of objects hit at the same distance, the one earliest in the
     // file.
     bool closest(const Ray& ray, Interval range, Found& found) const;
-    // Whether any object is hit in range.
-    bool any(const Ray& ray, Interval range) const;
+    // Whether any object is hit in range. With `last`, its object is tried first, and it
+    // is set to the blocker found.
+    bool any(const Ray& ray, Interval range, Blocker* last = nullptr) const;
 
   private:
+    static constexpr std::uint32_t kNoEntry = 0xffffffff;
+
     // What a test needs, stored contiguously in the order the leaves visit them.
     struct Entry {
         IntersectFn* intersect;
@@ -47,8 +56,9 @@ class ObjectIndex {
     };
 
     Bvh bvh_;
-    std::vector<Entry> bounded_;    // in leaf order
-    std::vector<Entry> unbounded_;  // in file order
+    // The bounded objects in leaf order, then the unbounded ones in file order.
+    std::vector<Entry> entries_;
+    std::size_t bounded_count_ = 0;
     std::size_t object_count_ = 0;
 };
 

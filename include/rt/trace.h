@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "rt/options.h"
 #include "rt/raster.h"
@@ -67,6 +68,7 @@ class Tracer {
     const RenderStats& stats() const { return stats_; }
 
   private:
+    bool blocked(const Ray& ray, double distance, ObjectIndex::Blocker* last) const;
     Spectrum direct_light(const Vec3& point, const Vec3& facing_normal, const Vec3& reflected,
                           const Material& m, double ks) const;
     bool may_trace(int depth, double weight) const {
@@ -77,6 +79,8 @@ class Tracer {
     RenderOptions options_;  // a copy: small, and safe when built from a temporary
     // Counting is not part of what a trace computes, so the const methods may count.
     mutable RenderStats stats_;
+    // Per light, the object that last blocked a shadow ray toward it.
+    mutable std::vector<ObjectIndex::Blocker> last_blockers_;
 };
 
 // Renders every pixel of the scene's viewer. Rows are shared among threads, and each pixel

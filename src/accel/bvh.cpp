@@ -1,6 +1,11 @@
 // Building the hierarchy: top down, each node split where the surface area heuristic (SAH),
 // evaluated at a few bin boundaries along the centroids' longest axis, says a ray will do
 // the least work; nodes are written straight into the flat array in depth-first order.
+//
+// The build works on a compact copy of the boxes (floats, rounded outward, with the
+// primitive's index), partitioned in place, so every pass reads memory in order. One pass per
+// node bins the primitives; the bins already hold the children's boxes, so the partition that
+// follows is the only other pass.
 #include "rt/bvh.h"
 
 #include <algorithm>
@@ -20,163 +25,240 @@ constexpr double kTraversalCost = 1.0;
 // primitive computes a rounding error outside its exact bounds still lies in its node.
 constexpr double kBoxPadding = 1e-9;
 
-double half_area(const Bounds& b) {
-    const Vec3 d = b.max - b.min;
-    return d.x * d.y + d.y * d.z + d.z * d.x;
-}
-
-Bounds merged(const Bounds& a, const Bounds& b) {
-    return {component_min(a.min, b.min), component_max(a.max, b.max)};
-}
-
-// The nearest float below (above) a double: a float box rounded this way holds the double one.
+// A float at or below (above) a double, so that a float box holds the double one. Moving
+// the value out by a float's relative precision first leaves room for the conversion's
+// rounding to the nearest float; near zero, where that room is smallest, the caller's
+// padding (at least kBoxPadding) covers it.
 float float_below(double v) {
-    if (v > FLT_MAX) return FLT_MAX;
-    if (!(v >= -FLT_MAX)) return -HUGE_VALF;
-    const float f = static_cast<float>(v);
-    return static_cast<double>(f) > v ? std::nextafter(f, -HUGE_VALF) : f;
+    const double x = v - std::fabs(v) * 0x1p-23;
+    if (x > FLT_MAX) return FLT_MAX;
+    return x < -FLT_MAX ? -HUGE_VALF : static_cast<float>(x);
 }
 float float_above(double v) {
-    if (v < -FLT_MAX) return -FLT_MAX;
-    if (!(v <= FLT_MAX)) return HUGE_VALF;
-    const float f = static_cast<float>(v);
-    return static_cast<double>(f) < v ? std::nextafter(f, HUGE_VALF) : f;
+    const double x = v + std::fabs(v) * 0x1p-23;
+    if (x < -FLT_MAX) return -FLT_MAX;
+    return x > FLT_MAX ? HUGE_VALF : static_cast<float>(x);
 }
+
+// A box of floats; empty (lo > hi) until something is added.
+struct Box {
+    float lo[3] = {HUGE_VALF, HUGE_VALF, HUGE_VALF};
+    float hi[3] = {-HUGE_VALF, -HUGE_VALF, -HUGE_VALF};
+
+    void add(const Box& b) {
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = std::min(lo[k], b.lo[k]);
+            hi[k] = std::max(hi[k], b.hi[k]);
+        }
+    }
+    void add_point(const float p[3]) {
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = std::min(lo[k], p[k]);
+            hi[k] = std::max(hi[k], p[k]);
+        }
+    }
+    // In double: a float box's sides can overflow a float product.
+    double half_area() const {
+        if (!(lo[0] <= hi[0])) return 0;
+        double d[3];
+        for (int k = 0; k < 3; ++k) d[k] = static_cast<double>(hi[k]) - lo[k];
+        return d[0] * d[1] + d[1] * d[2] + d[2] * d[0];
+    }
+};
+
+// One primitive as the build sees it: its box, the box's centre and the primitive's index.
+struct Reference {
+    Box box;
+    float centre[3];
+    std::uint32_t index;
+};
+
+Reference make_reference(const Bounds& b, std::uint32_t index) {
+    const double pad =
+        kBoxPadding * (1 + std::fmax(max_abs_component(b.min), max_abs_component(b.max)));
+    Reference r{{}, {}, index};
+    for (int k = 0; k < 3; ++k) {
+        r.box.lo[k] = float_below(b.min[k] - pad);
+        r.box.hi[k] = float_above(b.max[k] + pad);
+        // Halves first: min + max can overflow where neither does.
+        r.centre[k] = static_cast<float>(std::clamp(b.min[k] * 0.5 + b.max[k] * 0.5,
+                                                    static_cast<double>(-FLT_MAX),
+                                                    static_cast<double>(FLT_MAX)));
+    }
+    return r;
+}
+
+// A range of references with the box of their boxes and the box of their centres.
+struct Range {
+    std::uint32_t begin, end;
+    Box box, centres;
+
+    std::uint32_t count() const { return end - begin; }
+};
 
 class Builder {
   public:
-    Builder(std::span<const Bounds> boxes, std::vector<BvhNode>& nodes,
-            std::vector<std::uint32_t>& order)
-        : boxes_(boxes), nodes_(nodes), order_(order) {
-        centroids_.reserve(boxes.size());
-        // Halves first: min + max can overflow where neither does.
-        for (const Bounds& b : boxes) centroids_.push_back(b.min * 0.5 + b.max * 0.5);
-    }
+    Builder(std::vector<Reference>& refs, std::vector<BvhNode>& nodes)
+        : refs_(refs), nodes_(nodes) {}
 
-    void build(std::uint32_t begin, std::uint32_t end, int depth);
+    Range whole() const { return measured(0, static_cast<std::uint32_t>(refs_.size())); }
+    void build(const Range& range, int depth);
 
   private:
-    struct Split {
-        std::uint32_t mid = 0;  // order_[begin, mid) goes to the first child
-        int axis = 0;
-        bool leaf = false;
+    struct Bin {
+        std::uint32_t count = 0;
+        Box box;
     };
-    Split choose_split(std::uint32_t begin, std::uint32_t end, int depth, const Bounds& box);
-    std::uint32_t median_split(std::uint32_t begin, std::uint32_t end, int axis);
-    void write_box(BvhNode& node, const Bounds& box) const;
+    struct SahSplit {
+        double cost = kInfinity;  // relative to testing one primitive
+        bool found = false;       // false when no boundary separates the primitives
+        std::pair<Range, Range> children;
+    };
 
-    std::span<const Bounds> boxes_;
-    std::vector<Vec3> centroids_;
+    // The best of the splits between bins of centres along the axis, already partitioned.
+    SahSplit sah_split(const Range& range, int axis, double extent);
+
+    // Moves the references for which goes_first holds to the front of the range; returns
+    // the two parts with their centroid boxes (their boxes are left to the caller).
+    template <class Predicate>
+    std::pair<Range, Range> partition(const Range& range, Predicate goes_first);
+
+    Range measured(std::uint32_t begin, std::uint32_t end) const;
+    // Splits in the middle of the range, for primitives no position separates.
+    std::pair<Range, Range> median_split(const Range& range, int axis);
+    void make_leaf(std::size_t node, const Range& range);
+
+    std::vector<Reference>& refs_;
     std::vector<BvhNode>& nodes_;
-    std::vector<std::uint32_t>& order_;
 };
 
-void Builder::write_box(BvhNode& node, const Bounds& box) const {
-    const double pad =
-        kBoxPadding * (1 + std::fmax(max_abs_component(box.min), max_abs_component(box.max)));
-    for (int k = 0; k < 3; ++k) {
-        node.min[k] = float_below(box.min[k] - pad);
-        node.max[k] = float_above(box.max[k] + pad);
-    }
-}
-
-void Builder::build(std::uint32_t begin, std::uint32_t end, int depth) {
-    Bounds box;
-    for (std::uint32_t i = begin; i < end; ++i) box = merged(box, boxes_[order_[i]]);
-    const std::size_t index = nodes_.size();
-    nodes_.push_back({});
-    write_box(nodes_[index], box);
-
-    const Split split = choose_split(begin, end, depth, box);
-    if (split.leaf) {
-        nodes_[index].offset = begin;
-        nodes_[index].count = static_cast<std::uint16_t>(end - begin);
-        return;
-    }
-    nodes_[index].axis = static_cast<std::uint8_t>(split.axis);
-    build(begin, split.mid, depth + 1);
-    nodes_[index].offset = static_cast<std::uint32_t>(nodes_.size());
-    build(split.mid, end, depth + 1);
-}
-
-std::uint32_t Builder::median_split(std::uint32_t begin, std::uint32_t end, int axis) {
-    const std::uint32_t mid = begin + (end - begin) / 2;
-    std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
-                     [&](std::uint32_t a, std::uint32_t b) {
-                         return centroids_[a][axis] < centroids_[b][axis];
-                     });
-    return mid;
-}
-
-Builder::Split Builder::choose_split(std::uint32_t begin, std::uint32_t end, int depth,
-                                     const Bounds& box) {
-    const std::uint32_t count = end - begin;
-    if (count == 1) return {.leaf = true};
-
-    Bounds centroid_box;
-    for (std::uint32_t i = begin; i < end; ++i) centroid_box.expand(centroids_[order_[i]]);
-    const Vec3 extent = centroid_box.max - centroid_box.min;
-    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0
-                     : extent.y >= extent.z                       ? 1
-                                                                  : 2;
-    const bool fits_leaf = count <= Bvh::kMaxLeafSize;
-    // All centroids in one place: no split separates them, so a leaf or an even split.
-    if (!(extent[axis] > 0)) {
-        if (fits_leaf) return {.leaf = true};
-        return {.mid = begin + count / 2, .axis = axis};
-    }
-    if (depth >= Bvh::kMaxSahDepth) return {.mid = median_split(begin, end, axis), .axis = axis};
-
-    // Count the primitives and grow a box per bin of centroids along the axis.
-    const double origin = centroid_box.min[axis];
-    const double scale = kBins / extent[axis];
-    auto bin_of = [&](std::uint32_t primitive) {
-        const double b = (centroids_[primitive][axis] - origin) * scale;
-        return b >= kBins - 1 ? kBins - 1 : static_cast<int>(b);  // also takes inf
-    };
-    std::array<std::uint32_t, kBins> bin_count{};
-    std::array<Bounds, kBins> bin_box{};
+Range Builder::measured(std::uint32_t begin, std::uint32_t end) const {
+    Range r{begin, end, {}, {}};
     for (std::uint32_t i = begin; i < end; ++i) {
-        const std::uint32_t p = order_[i];
-        const auto b = static_cast<std::size_t>(bin_of(p));
-        ++bin_count[b];
-        bin_box[b] = merged(bin_box[b], boxes_[p]);
+        r.box.add(refs_[i].box);
+        r.centres.add_point(refs_[i].centre);
     }
-    // Sweep from the right for the boxes above each boundary, then from the left: the cost
-    // of splitting after bin s is that of visiting both children, weighted by the chance
-    // (their area over the parent's) that a ray through the parent enters each.
-    std::array<double, kBins> area_above{};
-    Bounds above;
-    for (int s = kBins - 1; s > 0; --s) {
-        above = merged(above, bin_box[static_cast<std::size_t>(s)]);
-        area_above[static_cast<std::size_t>(s)] = half_area(above);
+    return r;
+}
+
+std::pair<Range, Range> Builder::median_split(const Range& range, int axis) {
+    const std::uint32_t mid = range.begin + range.count() / 2;
+    std::nth_element(
+        refs_.begin() + range.begin, refs_.begin() + mid, refs_.begin() + range.end,
+        [axis](const Reference& a, const Reference& b) { return a.centre[axis] < b.centre[axis]; });
+    return {measured(range.begin, mid), measured(mid, range.end)};
+}
+
+template <class Predicate>
+std::pair<Range, Range> Builder::partition(const Range& range, Predicate goes_first) {
+    Range first{range.begin, range.begin, {}, {}};
+    Range second{range.end, range.end, {}, {}};
+    // Hoare's scheme: grow the first part from the front, the second from the back.
+    while (first.end < second.begin) {
+        Reference& r = refs_[first.end];
+        if (goes_first(r)) {
+            first.centres.add_point(r.centre);
+            ++first.end;
+        } else {
+            --second.begin;
+            std::swap(r, refs_[second.begin]);
+            second.centres.add_point(refs_[second.begin].centre);
+        }
     }
-    double best_cost = kInfinity;
-    int best_bin = -1;
-    Bounds below;
+    return {first, second};
+}
+
+void Builder::make_leaf(std::size_t node, const Range& range) {
+    nodes_[node].offset = range.begin;
+    nodes_[node].count = static_cast<std::uint16_t>(range.count());
+}
+
+Builder::SahSplit Builder::sah_split(const Range& range, int axis, double extent) {
+    // Fewer bins for fewer primitives: the bins' fixed cost dominates small nodes.
+    const std::size_t bin_count = std::min<std::size_t>(kBins, range.count());
+    // Count the primitives and grow the box of each bin of centres along the axis. Bins are
+    // found in float, the same way here and in the partition below.
+    const float origin = range.centres.lo[axis];
+    const auto scale = static_cast<float>(static_cast<double>(bin_count) / extent);
+    const auto last = static_cast<float>(bin_count - 1);
+    auto bin_of = [&](const Reference& r) {
+        const float b = (r.centre[axis] - origin) * scale;  // >= 0
+        return static_cast<std::size_t>(b < last ? b : last);
+    };
+    std::array<Bin, kBins> bins;
+    for (std::uint32_t i = range.begin; i < range.end; ++i) {
+        Bin& bin = bins[bin_of(refs_[i])];
+        ++bin.count;
+        bin.box.add(refs_[i].box);
+    }
+    // Sweep from the right for the boxes above each boundary, then from the left: the cost of
+    // splitting after bin s is that of visiting both children, weighted by the chance (their
+    // area over the parent's) that a ray through the parent enters each.
+    std::array<double, kBins> area_above;
+    Box above;
+    for (std::size_t s = bin_count - 1; s > 0; --s) {
+        above.add(bins[s].box);
+        area_above[s] = above.half_area();
+    }
+    SahSplit best;
+    std::size_t best_bin = 0;
+    Box below;
     std::uint32_t count_below = 0;
-    for (int s = 0; s < kBins - 1; ++s) {
-        const auto i = static_cast<std::size_t>(s);
-        below = merged(below, bin_box[i]);
-        count_below += bin_count[i];
-        const std::uint32_t count_above = count - count_below;
+    for (std::size_t s = 0; s + 1 < bin_count; ++s) {
+        below.add(bins[s].box);
+        count_below += bins[s].count;
+        const std::uint32_t count_above = range.count() - count_below;
         if (count_below == 0 || count_above == 0) continue;
-        const double cost = count_below * half_area(below) + count_above * area_above[i + 1];
-        if (cost < best_cost) {
-            best_cost = cost;
+        const double cost = count_below * below.half_area() + count_above * area_above[s + 1];
+        if (cost < best.cost) {
+            best.cost = cost;
             best_bin = s;
         }
     }
-    const double parent_area = half_area(box);
-    best_cost = kTraversalCost + best_cost / parent_area;
-    if (fits_leaf && !(best_cost < count)) return {.leaf = true};
-    // Rounding put every centroid in one bin, or the areas overflowed: split evenly.
-    if (best_bin < 0 || !std::isfinite(best_cost))
-        return {.mid = median_split(begin, end, axis), .axis = axis};
+    best.cost = kTraversalCost + best.cost / range.box.half_area();
+    best.found = std::isfinite(best.cost);
+    if (!best.found) return best;
+    best.children = partition(range, [&](const Reference& r) { return bin_of(r) <= best_bin; });
+    for (std::size_t b = 0; b < bin_count; ++b)
+        (b <= best_bin ? best.children.first : best.children.second).box.add(bins[b].box);
+    return best;
+}
 
-    const auto mid = std::partition(order_.begin() + begin, order_.begin() + end,
-                                    [&](std::uint32_t p) { return bin_of(p) <= best_bin; });
-    return {.mid = static_cast<std::uint32_t>(mid - order_.begin()), .axis = axis};
+void Builder::build(const Range& range, int depth) {
+    const std::size_t node = nodes_.size();
+    nodes_.push_back({});
+    for (int k = 0; k < 3; ++k) {
+        nodes_[node].bound[0][k] = range.box.lo[k];
+        nodes_[node].bound[1][k] = range.box.hi[k];
+    }
+    const std::uint32_t count = range.count();
+    if (count == 1) return make_leaf(node, range);
+
+    const Box& c = range.centres;
+    const double extent[3] = {static_cast<double>(c.hi[0]) - c.lo[0],
+                              static_cast<double>(c.hi[1]) - c.lo[1],
+                              static_cast<double>(c.hi[2]) - c.lo[2]};
+    const int axis = extent[0] >= extent[1] && extent[0] >= extent[2] ? 0
+                     : extent[1] >= extent[2]                         ? 1
+                                                                      : 2;
+    const bool fits_leaf = count <= Bvh::kMaxLeafSize;
+    std::pair<Range, Range> children;
+    if (!(extent[axis] > 0)) {
+        // All centroids in one place: no split separates them, so a leaf or an even split.
+        if (fits_leaf) return make_leaf(node, range);
+        const std::uint32_t mid = range.begin + count / 2;
+        children = {measured(range.begin, mid), measured(mid, range.end)};
+    } else if (depth >= Bvh::kMaxSahDepth || !std::isfinite(extent[axis])) {
+        children = median_split(range, axis);
+    } else {
+        const auto sah = sah_split(range, axis, extent[axis]);
+        if (fits_leaf && !(sah.cost < count)) return make_leaf(node, range);
+        // Every centroid in one bin, or areas beyond a double: split evenly.
+        children = sah.found ? sah.children : median_split(range, axis);
+    }
+    build(children.first, depth + 1);
+    nodes_[node].offset = static_cast<std::uint32_t>(nodes_.size());
+    build(children.second, depth + 1);
 }
 
 }  // namespace
@@ -185,25 +267,29 @@ BoxRay::BoxRay(const Ray& ray) {
     for (int k = 0; k < 3; ++k) {
         origin_[k] = ray.origin[k];
         inverse_[k] = 1 / ray.direction[k];  // +-inf for a zero component: see enters()
-        negative_[k] = std::signbit(inverse_[k]);
+        near_side_[k] = std::signbit(inverse_[k]) ? 1 : 0;
     }
 }
 
 Bvh::Bvh(std::span<const Bounds> boxes) {
     if (boxes.empty()) return;
-    order_.resize(boxes.size());
-    for (std::uint32_t i = 0; i < order_.size(); ++i) order_[i] = i;
+    std::vector<Reference> refs;
+    refs.reserve(boxes.size());
+    for (std::uint32_t i = 0; i < boxes.size(); ++i) refs.push_back(make_reference(boxes[i], i));
     // A binary tree with n leaves has 2n - 1 nodes; reserving them keeps the build from
     // reallocating (pages never touched cost no memory), and the fit afterwards trims it.
     nodes_.reserve(2 * boxes.size() - 1);
-    Builder(boxes, nodes_, order_).build(0, static_cast<std::uint32_t>(boxes.size()), 0);
+    Builder builder(refs, nodes_);
+    builder.build(builder.whole(), 0);
     nodes_.shrink_to_fit();
+    order_.reserve(refs.size());
+    for (const Reference& r : refs) order_.push_back(r.index);
 }
 
 Bounds Bvh::bounds() const {
     if (nodes_.empty()) return {};
-    const BvhNode& root = nodes_[0];
-    return {{root.min[0], root.min[1], root.min[2]}, {root.max[0], root.max[1], root.max[2]}};
+    const auto& b = nodes_[0].bound;
+    return {{b[0][0], b[0][1], b[0][2]}, {b[1][0], b[1][1], b[1][2]}};
 }
 
 }  // namespace rt

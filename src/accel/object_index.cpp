@@ -10,6 +10,9 @@ namespace rt {
 
 namespace {
 
+// How far past the best hit so far an object is asked for hits (relative).
+constexpr double kTieSlack = 1e-9;
+
 bool finite_box(const Bounds& b) {
     for (int k = 0; k < 3; ++k)
         if (!std::isfinite(b.min[k]) || !std::isfinite(b.max[k]) || !(b.min[k] <= b.max[k]))
@@ -23,7 +26,7 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects) : object_count_(object
     if (objects.size() > std::numeric_limits<std::uint32_t>::max())
         throw std::length_error("too many objects for the hierarchy");
     std::vector<Bounds> boxes;
-    std::vector<Entry> bounded;
+    std::vector<Entry> bounded, unbounded;
     for (std::uint32_t i = 0; i < objects.size(); ++i) {
         const Shape& shape = objects[i].shape;
         const Entry entry{shape.type->intersect, shape.data.get(), i};
@@ -32,42 +35,50 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects) : object_count_(object
             boxes.push_back(box);
             bounded.push_back(entry);
         } else {
-            unbounded_.push_back(entry);
+            unbounded.push_back(entry);
         }
     }
     bvh_ = Bvh(boxes);
-    bounded_.reserve(bounded.size());
-    for (const std::uint32_t i : bvh_.take_order()) bounded_.push_back(bounded[i]);
+    entries_.reserve(objects.size());
+    for (const std::uint32_t i : bvh_.take_order()) entries_.push_back(bounded[i]);
+    bounded_count_ = entries_.size();
+    entries_.insert(entries_.end(), unbounded.begin(), unbounded.end());
 }
 
 bool ObjectIndex::closest(const Ray& ray, Interval range, Found& found) const {
     constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
     double best = range.t_max;
     std::uint32_t best_object = kNone;
-    // An object earlier in the file than the best so far also wins at the same distance,
-    // so it is asked for hits up to just past the best.
     auto test = [&](const Entry& e) {
-        const bool earlier = best_object != kNone && e.object < best_object;
-        const double limit = earlier ? std::nextafter(best, kInfinity) : best;
+        // The linear scan asks each object with its own best so far, and an intersect's
+        // answer near t_max can depend on t_max by a rounding (an affine scales it), so each
+        // object is asked a little past the best, and the answer is judged here: nearer wins,
+        // and at the same distance the object earlier in the file.
+        const double limit = best_object == kNone ? best : best + kTieSlack * best;
         Hit hit;
         if (!e.intersect(e.data, ray, {range.t_min, limit}, hit)) return;
+        if (!(hit.t < best || (hit.t == best && e.object < best_object))) return;
         best = hit.t;
         best_object = e.object;
         found = {e.object, hit};
     };
     // The unbounded objects first: a floor under everything prunes much of the tree.
-    for (const Entry& e : unbounded_) test(e);
-    bvh_.closest(ray, range.t_min, best, [&](std::uint32_t i) { test(bounded_[i]); });
+    for (std::size_t i = bounded_count_; i < entries_.size(); ++i) test(entries_[i]);
+    bvh_.closest(ray, range.t_min, best, [&](std::uint32_t i) { test(entries_[i]); });
     return best_object != kNone;
 }
 
-bool ObjectIndex::any(const Ray& ray, Interval range) const {
+bool ObjectIndex::any(const Ray& ray, Interval range, Blocker* last) const {
     Hit hit;
-    auto blocks = [&](const Entry& e) { return e.intersect(e.data, ray, range, hit); };
-    for (const Entry& e : unbounded_)
-        if (blocks(e)) return true;
-    return bvh_.any(ray, range.t_min, range.t_max,
-                    [&](std::uint32_t i) { return blocks(bounded_[i]); });
+    auto blocks = [&](std::uint32_t i) {
+        if (!entries_[i].intersect(entries_[i].data, ray, range, hit)) return false;
+        if (last != nullptr) last->entry = i;
+        return true;
+    };
+    if (last != nullptr && last->entry < entries_.size() && blocks(last->entry)) return true;
+    for (auto i = static_cast<std::uint32_t>(bounded_count_); i < entries_.size(); ++i)
+        if (blocks(i)) return true;
+    return bvh_.any(ray, range.t_min, range.t_max, blocks);
 }
 
 }  // namespace rt

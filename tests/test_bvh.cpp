@@ -1,0 +1,482 @@
+// The bounding volume hierarchy: its structure on random boxes, and the promise that it
+// changes nothing. The linear scan (--no-bvh) is the oracle: on seeded random scenes of every
+// primitive type, overlapping, coincident and nested in affines, both must find the same
+// object at the same distance for every ray and render the same image on any thread count.
+#include <algorithm>
+#include <bit>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "rt/bvh.h"
+#include "rt/trace.h"
+#include "scene_util.h"
+
+using namespace rt;
+using namespace rt_test;
+
+namespace {
+
+Bounds node_box(const BvhNode& n) {
+    const auto& b = n.bound;
+    return {{b[0][0], b[0][1], b[0][2]}, {b[1][0], b[1][1], b[1][2]}};
+}
+
+bool box_holds(const Bounds& outer, const Bounds& inner) {
+    return outer.contains(inner.min) && outer.contains(inner.max);
+}
+
+// Checks the tree below `index`: boxes nest, leaves are small, every path is bounded.
+// Returns the number of primitives below.
+std::size_t check_subtree(const Bvh& bvh, std::span<const Bounds> boxes, std::uint32_t index,
+                          int depth, int& deepest) {
+    const BvhNode& node = bvh.nodes()[index];
+    deepest = std::max(deepest, depth);
+    const Bounds box = node_box(node);
+    if (node.is_leaf()) {
+        CHECK(node.count <= Bvh::kMaxLeafSize);
+        for (std::uint32_t i = node.offset; i < node.offset + node.count; ++i)
+            CHECK(box_holds(box, boxes[bvh.order()[i]]));
+        return node.count;
+    }
+    const std::uint32_t first = index + 1, second = node.offset;
+    CHECK(second > first && second < bvh.nodes().size());
+    CHECK(box_holds(box, node_box(bvh.nodes()[first])));
+    CHECK(box_holds(box, node_box(bvh.nodes()[second])));
+    return check_subtree(bvh, boxes, first, depth + 1, deepest) +
+           check_subtree(bvh, boxes, second, depth + 1, deepest);
+}
+
+void check_structure(std::span<const Bounds> boxes) {
+    const Bvh bvh(boxes);
+    // Every primitive appears in the leaves exactly once.
+    std::vector<std::uint32_t> order(bvh.order().begin(), bvh.order().end());
+    std::sort(order.begin(), order.end());
+    bool permutation = order.size() == boxes.size();
+    for (std::uint32_t i = 0; permutation && i < order.size(); ++i) permutation = order[i] == i;
+    CHECK(permutation);
+    int deepest = 0;
+    CHECK_EQ(check_subtree(bvh, boxes, 0, 0, deepest), boxes.size());
+    CHECK(deepest <= Bvh::kMaxSahDepth + 32);
+}
+
+std::vector<Bounds> random_boxes(Random& random, std::size_t count, double spread, double size) {
+    std::vector<Bounds> boxes;
+    for (std::size_t i = 0; i < count; ++i) {
+        const Vec3 c = random.in_box(spread);
+        const Vec3 h{random.uniform(0, size), random.uniform(0, size), random.uniform(0, size)};
+        boxes.push_back({c - h, c + h});
+    }
+    return boxes;
+}
+
+// Whether the ray passes through the box's inside, well away from its edges (so that no
+// rounding can decide it): then the hierarchy must offer that primitive.
+bool clearly_crosses(const Ray& ray, const Bounds& b) {
+    double near = 0, far = kInfinity;
+    for (int k = 0; k < 3; ++k) {
+        const double lo = (b.min[k] - ray.origin[k]) / ray.direction[k];
+        const double hi = (b.max[k] - ray.origin[k]) / ray.direction[k];
+        near = std::max(near, std::min(lo, hi));
+        far = std::min(far, std::max(lo, hi));
+    }
+    return near + 1e-6 < far;
+}
+
+}  // namespace
+
+TEST(structure_of_random_boxes) {
+    Random random(1);
+    for (const std::size_t n : {1, 2, 3, 9, 100, 5000})
+        check_structure(random_boxes(random, n, 10, 1));
+}
+
+TEST(structure_when_boxes_coincide_or_are_flat) {
+    // Identical boxes give no split by position: the build splits evenly instead.
+    check_structure(std::vector<Bounds>(3000, Bounds{{0, 0, 0}, {1, 1, 1}}));
+    // Flat boxes (triangles in axis planes) and points.
+    std::vector<Bounds> flat;
+    Random random(2);
+    for (int i = 0; i < 2000; ++i) {
+        const Vec3 p = random.in_box(5);
+        flat.push_back({p, {p.x + 1, p.y, p.z + (i % 3 == 0 ? 0 : 1)}});
+        flat.push_back({p, p});
+    }
+    check_structure(flat);
+}
+
+TEST(structure_with_extreme_sizes) {
+    // Sizes spread over hundreds of orders of magnitude: SAH splits peel off one box at a time
+    // here, so the depth limit's median splits must take over.
+    std::vector<Bounds> boxes;
+    for (int i = 0; i < 600; ++i) {
+        const double s = std::ldexp(1.0, i - 300);
+        boxes.push_back({{s, s, s}, {2 * s, 2 * s, 2 * s}});
+    }
+    boxes.push_back({{-1e300, -1e300, -1e300}, {1e300, 1e300, 1e300}});  // beyond float range
+    check_structure(boxes);
+}
+
+TEST(traversal_offers_every_box_the_ray_crosses) {
+    Random random(3);
+    const std::vector<Bounds> boxes = random_boxes(random, 4000, 10, 0.7);
+    const Bvh bvh(boxes);
+    for (int r = 0; r < 2000; ++r) {
+        const Ray ray{random.in_box(12), random.unit_vector()};
+        std::vector<bool> offered(boxes.size(), false);
+        double t_max = kInfinity;
+        bvh.closest(ray, 0, t_max, [&](std::uint32_t i) { offered[bvh.order()[i]] = true; });
+        bool all = true;
+        for (std::size_t i = 0; i < boxes.size(); ++i)
+            if (clearly_crosses(ray, boxes[i]) && !offered[i]) all = false;
+        CHECK(all);
+    }
+}
+
+TEST(traversal_with_axis_parallel_rays_on_box_faces) {
+    // A ray parallel to a slab with its origin on the slab's plane: 0 * inf in the slab test.
+    const std::vector<Bounds> boxes{{{0, 0, 0}, {1, 1, 1}}, {{2, 0, 0}, {3, 1, 0}}};
+    const Bvh bvh(boxes);
+    for (const Ray& ray : {Ray{{-1, 0, 0}, {1, 0, 0}}, Ray{{-1, 1, 0.5}, {1, 0, 0}},
+                           Ray{{2.5, 0.5, -1}, {0, 0, 1}}, Ray{{0, 0, -3}, {0, 0, 1}}}) {
+        std::size_t offered = 0;
+        double t_max = kInfinity;
+        bvh.closest(ray, 0, t_max, [&](std::uint32_t) { ++offered; });
+        CHECK(offered >= 1);
+    }
+}
+
+TEST(any_stops_at_the_first_yes) {
+    Random random(4);
+    const std::vector<Bounds> boxes = random_boxes(random, 500, 3, 1);
+    const Bvh bvh(boxes);
+    int calls = 0;
+    CHECK(bvh.any(Ray{{-10, 0, 0}, {1, 0, 0}}, 0, kInfinity, [&](std::uint32_t) {
+        ++calls;
+        return true;
+    }));
+    CHECK_EQ(calls, 1);
+    CHECK(!Bvh().any(Ray{{0, 0, 0}, {1, 0, 0}}, 0, kInfinity, [](std::uint32_t) { return true; }));
+}
+
+// ---- The oracle: the same scene with and without the hierarchy ----
+
+namespace {
+
+// Writes random scenes with every primitive type. Coordinates are often multiples of 1/4, so
+// that faces coincide exactly, boxes are flat, and some objects are exact duplicates.
+class SceneWriter {
+  public:
+    explicit SceneWriter(std::uint64_t seed) : random_(seed) { text_.precision(17); }
+
+    std::string scene(int objects, int resolution) {
+        text_ << "102  0 2 30  0 0 0  1 0 0  0 1 0  " << resolution << ' ' << resolution << '\n';
+        text_ << "103 0.1 0.1 0.1\n104 -20 30 40  0.6 0.6 0.6\n101 15 10 20  300 300 300\n";
+        text_ << "2 -11 0 1 0 " << surface() << '\n';  // a floor
+        text_ << "7  0 0 -12  1 0 0  0 1 0  0.2 0 1  2 0 0 0 1 " << surface() << '\n';
+        std::string previous;
+        for (int i = 0; i < objects; ++i) {
+            // Now and then the same object again: a tie the file order must break.
+            std::ostringstream one;
+            one.precision(17);
+            if (!previous.empty() && random_.uniform() < 0.05) {
+                text_ << previous << ' ' << surface() << '\n';
+                continue;
+            }
+            std::swap(one, text_);
+            primitive(0);
+            std::swap(one, text_);
+            previous = one.str();
+            text_ << previous << ' ' << surface() << '\n';
+        }
+        return text_.str();
+    }
+
+  private:
+    double coordinate(double half) {
+        const double x = random_.uniform(-half, half);
+        return random_.uniform() < 0.5 ? std::round(x * 4) / 4 : x;
+    }
+    void point(double half) {
+        text_ << ' ' << coordinate(half) << ' ' << coordinate(half) << ' ' << coordinate(half);
+    }
+    void vec(const Vec3& v) { text_ << ' ' << v.x << ' ' << v.y << ' ' << v.z; }
+    Vec3 direction() {
+        if (random_.uniform() < 0.3) {  // along an axis
+            Vec3 v;
+            const double s = random_.uniform() < 0.5 ? -1 : 1;
+            switch (random_.next() % 3) {
+                case 0:
+                    v = {s, 0, 0};
+                    break;
+                case 1:
+                    v = {0, s, 0};
+                    break;
+                default:
+                    v = {0, 0, s};
+                    break;
+            }
+            return v;
+        }
+        return random_.unit_vector();
+    }
+    std::string surface() {
+        std::ostringstream s;
+        s << "100 " << random_.uniform() << ' ' << random_.uniform() << ' ' << random_.uniform();
+        switch (random_.next() % 4) {
+            case 0:
+                s << " 0.5 20 0.5 0 1";
+                break;  // a mirror
+            case 1:
+                s << " 0.1 10 0.3 0.7 1.5";
+                break;  // glass-like
+            default:
+                s << " 0.2 30 0.8 0 1";
+                break;  // diffuse
+        }
+        return s.str();
+    }
+
+    // One primitive (ID and numbers, no surface) around a random place.
+    void primitive(int nesting) {
+        const double h = 10;  // objects lie in [-h, h]^3
+        const int kinds = nesting < 2 ? 12 : 11;
+        switch (random_.next() % static_cast<std::uint64_t>(kinds)) {
+            case 0:
+                text_ << "1 " << random_.uniform(0.2, 1.5);
+                point(h);
+                break;
+            case 1:
+                text_ << "3";
+                point(h);
+                vec(direction());
+                text_ << ' ' << random_.uniform(0.2, 1.5);
+                break;
+            case 2: {
+                const double outer = random_.uniform(0.4, 1.5);
+                text_ << "4";
+                point(h);
+                vec(direction());
+                text_ << ' ' << outer << ' ' << outer * random_.uniform(0, 0.9);
+                break;
+            }
+            case 3: {  // often in a plane z = const, with edges on the 1/4 grid
+                const Vec3 c{coordinate(h), coordinate(h), coordinate(h)};
+                const bool flat = random_.uniform() < 0.4;
+                auto edge = [&] {
+                    return Vec3(coordinate(1), coordinate(1), flat ? 0 : coordinate(1));
+                };
+                Vec3 a = edge();
+                if (length(a) < 0.2) a = {0.5, 0, 0.25};
+                Vec3 b = edge();
+                if (length(cross(a, b)) < 0.05) b = cross(a, {0, 0, 1}) + Vec3(0.25, 0.5, 0);
+                if (length(cross(a, b)) < 0.05) b = {0.5, 0.25, 0};
+                text_ << "5";
+                vec(c);
+                vec(c + a);
+                vec(c + b);
+                break;
+            }
+            case 4:
+                text_ << "6";
+                point(h);
+                vec(Vec3(0.25 + std::fabs(coordinate(1.5)), 0, 0));
+                vec(Vec3(0, 0.25 + std::fabs(coordinate(1.5)), coordinate(1.5)));
+                break;
+            case 5:
+                text_ << "8 " << random_.uniform(0.5, 0.95) << " 0 " << random_.uniform(0.3, 1.5);
+                point(h);
+                vec(direction());
+                break;
+            case 6:
+                text_ << "9 " << random_.uniform(0.2, 1) << ' ' << random_.uniform(-1, 0) << ' '
+                      << random_.uniform(0.1, 2);
+                point(h);
+                vec(direction());
+                break;
+            case 7: {
+                const double major = random_.uniform(0.4, 1.5);
+                text_ << "10";
+                point(h);
+                vec(direction());
+                text_ << ' ' << major << ' ' << major * random_.uniform(0.1, 0.6);
+                break;
+            }
+            case 8: {  // a regular polygon in a random plane
+                const int n = 3 + static_cast<int>(random_.next() % 6);
+                const Frame f = frame_around(direction());
+                const Vec3 c{coordinate(h), coordinate(h), coordinate(h)};
+                const double r = random_.uniform(0.3, 1.5);
+                text_ << "11 " << n;
+                for (int v = 0; v < n; ++v) {
+                    const double a = 2 * 3.141592653589793 * v / n;
+                    vec(c + r * (std::cos(a) * f.e1 + std::sin(a) * f.e2));
+                }
+                break;
+            }
+            case 9: {
+                text_ << "12";
+                const Vec3 lo{coordinate(h), coordinate(h), coordinate(h)};
+                vec(lo);
+                vec(lo + Vec3(random_.uniform(0.1, 2), random_.uniform(0.1, 2),
+                              random_.uniform(0.1, 2)));
+                break;
+            }
+            case 10:
+                text_ << "1 " << random_.uniform(0.05, 0.4);
+                point(h);
+                break;
+            default: {  // an affine around any of the above, or around another affine
+                text_ << "7";
+                point(h);
+                const Frame f = frame_around(random_.unit_vector());
+                vec(f.e1 * random_.uniform(0.5, 1.5));
+                vec(f.e2 * random_.uniform(0.5, 1.5) + f.e1 * random_.uniform(-0.3, 0.3));
+                vec(f.e3 * random_.uniform(0.5, 1.5));
+                text_ << ' ';
+                std::ostringstream inner;
+                inner.precision(17);
+                std::swap(inner, text_);
+                primitive(nesting + 1);
+                std::swap(inner, text_);
+                text_ << inner.str();
+                break;
+            }
+        }
+    }
+    Random random_;
+    std::ostringstream text_;
+};
+
+RenderOptions linear_options() {
+    RenderOptions o;
+    o.accelerate = false;
+    return o;
+}
+
+bool same_bits(double a, double b) {
+    return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+
+bool same_image(const Raster& a, const Raster& b) {
+    if (a.width() != b.width() || a.height() != b.height()) return false;
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x)
+            for (std::size_t i = 0; i < kSpectrumComponents; ++i)
+                if (!same_bits(a.at(x, y)[i], b.at(x, y)[i])) return false;
+    return true;
+}
+
+// Counts rays on which the two tracers disagree about the nearest hit or a shadow.
+int disagreements(const Scene& scene, Random& random, int rays) {
+    const Tracer fast(scene, {});
+    const Tracer slow(scene, linear_options());
+    int differ = 0;
+    for (int r = 0; r < rays; ++r) {
+        // From outside, from inside the crowd, and along the axes (rays parallel to slabs).
+        Vec3 origin = random.in_box(r % 3 == 0 ? 25 : 11);
+        if (r % 5 == 0) origin = {std::round(origin.x), std::round(origin.y), std::round(origin.z)};
+        Vec3 direction = random.unit_vector();
+        if (r % 7 == 0) direction = {0, r % 2 == 0 ? -1.0 : 1.0, 0};
+        const Ray ray{origin, direction};
+        const auto a = fast.closest_hit(ray);
+        const auto b = slow.closest_hit(ray);
+        const bool same = a.has_value() == b.has_value() &&
+                          (!a || (a->object == b->object && same_bits(a->hit.t, b->hit.t) &&
+                                  a->hit.part == b->hit.part));
+        const double distance = random.uniform(0.1, 30);
+        if (!same || fast.blocked(ray, distance) != slow.blocked(ray, distance)) {
+            ++differ;
+            std::cerr << "differ: ray " << show(origin) << " " << show(direction) << " d "
+                      << distance << " fast " << (a ? a->object - &scene.objects[0] : -1) << " t "
+                      << (a ? show(a->hit.t) : "") << " slow "
+                      << (b ? b->object - &scene.objects[0] : -1) << " t "
+                      << (b ? show(b->hit.t) : "") << " blocked " << fast.blocked(ray, distance)
+                      << slow.blocked(ray, distance) << "\n";
+        }
+    }
+    return differ;
+}
+
+}  // namespace
+
+TEST(same_nearest_hit_and_shadows_as_the_linear_scan) {
+    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+        const Scene scene = parse_scene(SceneWriter(seed).scene(3000, 8));
+        CHECK(scene.index.bounded_count() > 2900);
+        CHECK(scene.index.unbounded_count() == 2);  // the floor and the affine plane
+        Random random(seed * 101);
+        CHECK_EQ(disagreements(scene, random, 4000), 0);
+    }
+}
+
+TEST(same_image_as_the_linear_scan_on_any_thread_count) {
+    const Scene scene = parse_scene(SceneWriter(7).scene(2000, 40));
+    RenderOptions options;
+    options.max_depth = 4;
+    RenderOptions linear = options;
+    linear.accelerate = false;
+    linear.threads = 1;
+    const Raster expected = render(scene, linear);
+    for (const int threads : {1, 2, 3, 8}) {
+        options.threads = threads;
+        CHECK(same_image(render(scene, options), expected));
+    }
+    // Every render mode takes the same first hit.
+    for (const RenderMode mode : {RenderMode::depth, RenderMode::colour, RenderMode::normal}) {
+        options.mode = linear.mode = mode;
+        CHECK(same_image(render(scene, options), render(scene, linear)));
+    }
+}
+
+TEST(same_image_for_every_example_scene) {
+    for (const auto& entry : std::filesystem::directory_iterator(RT_SOURCE_DIR "/scenes")) {
+        if (entry.path().extension() != ".in") continue;
+        const Scene scene = read_scene_file(entry.path().string());
+        RenderOptions linear;
+        linear.accelerate = false;
+        const bool same = same_image(render(scene, {}), render(scene, linear));
+        if (!same) record_failure(__FILE__, __LINE__, entry.path().string() + " differs");
+    }
+}
+
+TEST(ties_go_to_the_object_earlier_in_the_file) {
+    // Two coincident spheres, many copies in between so they land in different leaves.
+    std::string text = kTestViewer;
+    text += "1 1  0 0 0  100 1 0 0 0 1 1 0 1\n";
+    for (int i = 0; i < 200; ++i)
+        text += object_text(1, {0.1, -5 + 0.05 * i, 3, -2}) + " 100 0 1 0 0 1 1 0 1\n";
+    text += "1 1  0 0 0  100 0 0 1 0 1 1 0 1\n";
+    const Scene scene = parse_scene(text);
+    const auto found = Tracer(scene, {}).closest_hit({{0, 0, 5}, {0, 0, -1}});
+    CHECK(found && found->object == &scene.objects.front());
+}
+
+TEST(counts_rays_of_each_kind) {
+    // One sphere filling a 4x4 image, one light, a mirror: every primary ray hits, casts a
+    // shadow ray and spawns a reflected ray that escapes (and casts no shadow ray).
+    const Scene scene = parse_scene(std::string("102  0 0 5  0 0 0  0.1 0 0  0 0.1 0  4 4\n") +
+                                    "1 1 0 0 0  100 1 1 1 0.5 10 0.5 0 1\n104 0 0 10  1 1 1\n");
+    RenderStats stats;
+    RenderOptions options;
+    options.threads = 2;
+    render(scene, options, &stats);
+    CHECK_EQ(stats.primary_rays, 16u);
+    CHECK_EQ(stats.shadow_rays, 16u);
+    CHECK_EQ(stats.secondary_rays, 16u);
+}
+
+TEST(a_tracer_needs_the_index_unless_linear) {
+    std::istringstream in(std::string(kTestViewer) + "1 1 0 0 0 100 1 1 1 0 1 1 0 1\n");
+    SceneReader reader(in, "test.in", {});
+    const Scene scene = reader.read_scene();  // not indexed
+    bool threw = false;
+    try {
+        Tracer(scene, {});
+    } catch (const std::logic_error&) {
+        threw = true;
+    }
+    CHECK(threw);
+    CHECK(Tracer(scene, linear_options()).closest_hit({{0, 0, 5}, {0, 0, -1}}).has_value());
+}
