@@ -166,3 +166,14 @@ TEST(parse_command_line_values) {
     CHECK(rt::parse_command_line({"-m", "colour"}).render.mode == rt::RenderMode::colour);
     CHECK(rt::parse_command_line({"-mnormal"}).render.mode == rt::RenderMode::normal);
 }
+
+TEST(no_bvh_renders_the_same_bytes) {
+    const fs::path dir = work_dir("no-bvh");
+    write_file(dir / "scene.in", kScene + "2 -1 0 1 0 100 .5 .5 .5 .5 10 .8 0 1\n");
+    CHECK_EQ(run_rt(dir, "scene.in -o fast.ppm").status, 0);
+    CHECK_EQ(run_rt(dir, "--no-bvh scene.in -o slow.ppm").status, 0);
+    CHECK(read_file(dir / "fast.ppm") == read_file(dir / "slow.ppm"));
+    CHECK(rt::parse_command_line({}).render.accelerate);
+    CHECK(!rt::parse_command_line({"--no-bvh"}).render.accelerate);
+    CHECK_EQ(run_rt(dir, "--no-bvh=1 scene.in").status, 2);
+}

@@ -20,7 +20,7 @@ namespace {
 // Bin boundaries per split. More bins find slightly better splits and cost build time.
 constexpr int kBins = 16;
 // The cost of visiting a node, relative to testing one primitive.
-constexpr double kTraversalCost = 1.0;
+constexpr double kTraversalCost = 2.0;
 // Boxes are widened by this much relative to their coordinates, so that a hit point a
 // primitive computes a rounding error outside its exact bounds still lies in its node.
 constexpr double kBoxPadding = 1e-9;
