@@ -16,7 +16,7 @@ constexpr int kExitError = 1;  // a scene, texture or input/output error
 constexpr int kExitUsage = 2;  // the command line made no sense
 
 int run(const rt::CommandLine& cl) {
-    const rt::Scene scene = rt::read_scene_file(cl.input);
+    const rt::Scene scene = rt::read_scene_file(cl.input, rt::worker_threads(cl.render.threads));
     if (cl.read_only) {
         const std::string name = cl.input == "-" ? "<stdin>" : cl.input;
         std::cout << name << ": " << scene.objects.size() << " objects, " << scene.lights.size()

@@ -256,21 +256,23 @@ Scene SceneReader::read_scene() {
     return scene;
 }
 
-Scene read_scene(std::istream& in, const std::string& name, const std::filesystem::path& base_dir) {
+Scene read_scene(std::istream& in, const std::string& name, const std::filesystem::path& base_dir,
+                 int threads) {
     SceneReader reader(in, name, base_dir);
     Scene scene = reader.read_scene();
-    scene.build_index();
+    scene.build_index(threads);
     return scene;
 }
 
-Scene read_scene_file(const std::string& path) {
-    if (path == "-") return read_scene(std::cin, "<stdin>", std::filesystem::current_path());
+Scene read_scene_file(const std::string& path, int threads) {
+    if (path == "-")
+        return read_scene(std::cin, "<stdin>", std::filesystem::current_path(), threads);
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
         throw Error(path + ": is a directory, not a scene file");
     std::ifstream file(path, std::ios::binary);
     if (!file) throw Error(path + ": cannot open scene file");
-    return read_scene(file, path, std::filesystem::path(path).parent_path());
+    return read_scene(file, path, std::filesystem::path(path).parent_path(), threads);
 }
 
 }  // namespace rt

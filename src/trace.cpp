@@ -153,12 +153,15 @@ Spectrum Tracer::pixel(int x, int y) const {
     return sum * (1.0 / (n * n));
 }
 
+int worker_threads(int requested) {
+    if (requested > 0) return requested;
+    return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
+
 Raster render(const Scene& scene, const RenderOptions& options, RenderStats* stats) {
     const Viewer& v = scene.viewer;
     Raster raster(v.xres, v.yres);
-    int threads = options.threads > 0 ? options.threads
-                                      : static_cast<int>(std::thread::hardware_concurrency());
-    threads = std::clamp(threads, 1, v.yres);
+    const int threads = std::clamp(worker_threads(options.threads), 1, v.yres);
     // One tracer per thread, each counting its own rays; merged once all have joined.
     std::vector<Tracer> tracers(static_cast<std::size_t>(threads), Tracer(scene, options));
     std::atomic<int> next_row{0};

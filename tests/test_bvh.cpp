@@ -118,6 +118,21 @@ TEST(structure_with_extreme_sizes) {
     check_structure(boxes);
 }
 
+TEST(the_same_tree_on_any_number_of_threads) {
+    Random random(5);
+    const std::vector<Bounds> boxes = random_boxes(random, 150000, 50, 0.5);
+    const Bvh one(boxes, 1);
+    for (const int threads : {2, 3, 4}) {
+        const Bvh many(boxes, threads);
+        CHECK_EQ(many.nodes().size(), one.nodes().size());
+        CHECK(std::memcmp(many.nodes().data(), one.nodes().data(),
+                          one.nodes().size() * sizeof(BvhNode)) == 0);
+        CHECK(std::equal(many.order().begin(), many.order().end(), one.order().begin(),
+                         one.order().end()));
+    }
+    check_structure(boxes);
+}
+
 TEST(traversal_offers_every_box_the_ray_crosses) {
     Random random(3);
     const std::vector<Bounds> boxes = random_boxes(random, 4000, 10, 0.7);

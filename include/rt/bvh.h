@@ -66,9 +66,10 @@ class Bvh {
     static constexpr int kMaxSahDepth = 48;
 
     Bvh() = default;
-    // Builds over the given boxes, which must be finite, with binned SAH splits. Primitive i
-    // is the one with boxes[i]; order() lists them as the leaves hold them.
-    explicit Bvh(std::span<const Bounds> boxes);
+    // Builds over the given boxes, which must be finite, with binned SAH splits, on up to
+    // `threads` threads (the result is the same for any number). Primitive i is the one with
+    // boxes[i]; order() lists them as the leaves hold them.
+    explicit Bvh(std::span<const Bounds> boxes, int threads = 1);
 
     bool empty() const { return nodes_.empty(); }
     std::span<const BvhNode> nodes() const { return nodes_; }

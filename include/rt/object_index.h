@@ -30,7 +30,7 @@ class ObjectIndex {
     ObjectIndex() = default;
     // Objects with finite bounds go into the hierarchy; the rest (planes, and affines of
     // them) stay in a short list tested on every ray.
-    explicit ObjectIndex(std::span<const Object> objects);
+    explicit ObjectIndex(std::span<const Object> objects, int threads = 1);
 
     // Whether this index was built over exactly `count` objects.
     bool covers(std::size_t count) const { return object_count_ == count; }

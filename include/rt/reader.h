@@ -91,9 +91,9 @@ class SceneReader {
 std::string format_number(double value);
 
 // Convenience wrappers: read a whole scene from a stream or a file ("-" for stdin) and build
-// its hierarchy.
+// its hierarchy on up to `threads` threads.
 Scene read_scene(std::istream& in, const std::string& name,
-                 const std::filesystem::path& base_dir = {});
-Scene read_scene_file(const std::string& path);
+                 const std::filesystem::path& base_dir = {}, int threads = 1);
+Scene read_scene_file(const std::string& path, int threads = 1);
 
 }  // namespace rt

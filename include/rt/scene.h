@@ -24,8 +24,9 @@ struct Scene {
     Spectrum ambient{0.0};  // the sum of the ambient lights (ID 103)
     ObjectIndex index;      // the hierarchy over `objects`, once build_index() has run
 
-    // Builds the hierarchy over the objects; read_scene() and read_scene_file() call it.
-    void build_index() { index = ObjectIndex(objects); }
+    // Builds the hierarchy over the objects on up to `threads` threads (the same hierarchy
+    // for any number); read_scene() and read_scene_file() call it.
+    void build_index(int threads = 1) { index = ObjectIndex(objects, threads); }
 };
 
 }  // namespace rt

@@ -83,6 +83,9 @@ class Tracer {
     mutable std::vector<ObjectIndex::Blocker> last_blockers_;
 };
 
+// The number of threads a render uses for RenderOptions::threads (0: one per hardware thread).
+int worker_threads(int requested);
+
 // Renders every pixel of the scene's viewer. Rows are shared among threads, and each pixel
 // depends on nothing else, so the result is the same whatever the number of threads. When
 // stats is given, the counts of every thread are added into it.

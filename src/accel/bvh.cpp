@@ -12,6 +12,8 @@
 #include <array>
 #include <cfloat>
 #include <cmath>
+#include <exception>
+#include <thread>
 
 namespace rt {
 
@@ -24,6 +26,8 @@ constexpr double kTraversalCost = 2.0;
 // Boxes are widened by this much relative to their coordinates, so that a hit point a
 // primitive computes a rounding error outside its exact bounds still lies in its node.
 constexpr double kBoxPadding = 1e-9;
+// Below this many primitives a subtree is not worth a thread of its own.
+constexpr std::uint32_t kParallelBuildMinimum = 50000;
 
 // A float at or below (above) a double, so that a float box holds the double one. Moving
 // the value out by a float's relative precision first leaves room for the conversion's
@@ -102,7 +106,10 @@ class Builder {
         : refs_(refs), nodes_(nodes) {}
 
     Range whole() const { return measured(0, static_cast<std::uint32_t>(refs_.size())); }
-    void build(const Range& range, int depth);
+    // Writes the subtree over the range into nodes_, depth first, using up to `threads`
+    // threads: a second thread builds a large node's second child into nodes of its own,
+    // appended afterwards, so the array is the same however many threads built it.
+    void build(const Range& range, int depth, int threads);
 
   private:
     struct Bin {
@@ -127,6 +134,8 @@ class Builder {
     // Splits in the middle of the range, for primitives no position separates.
     std::pair<Range, Range> median_split(const Range& range, int axis);
     void make_leaf(std::size_t node, const Range& range);
+    void build_children(std::size_t node, const std::pair<Range, Range>& children, int depth,
+                        int threads);
 
     std::vector<Reference>& refs_;
     std::vector<BvhNode>& nodes_;
@@ -153,17 +162,15 @@ template <class Predicate>
 std::pair<Range, Range> Builder::partition(const Range& range, Predicate goes_first) {
     Range first{range.begin, range.begin, {}, {}};
     Range second{range.end, range.end, {}, {}};
-    // Hoare's scheme: grow the first part from the front, the second from the back.
-    while (first.end < second.begin) {
-        Reference& r = refs_[first.end];
-        if (goes_first(r)) {
-            first.centres.add_point(r.centre);
-            ++first.end;
-        } else {
-            --second.begin;
-            std::swap(r, refs_[second.begin]);
-            second.centres.add_point(refs_[second.begin].centre);
-        }
+    // Hoare's scheme: grow the first part from the front and the second from the back,
+    // swapping only a pair that is on the wrong sides.
+    for (;;) {
+        while (first.end < second.begin && goes_first(refs_[first.end]))
+            first.centres.add_point(refs_[first.end++].centre);
+        while (first.end < second.begin && !goes_first(refs_[second.begin - 1]))
+            second.centres.add_point(refs_[--second.begin].centre);
+        if (first.end == second.begin) break;
+        std::swap(refs_[first.end], refs_[second.begin - 1]);
     }
     return {first, second};
 }
@@ -224,7 +231,40 @@ Builder::SahSplit Builder::sah_split(const Range& range, int axis, double extent
     return best;
 }
 
-void Builder::build(const Range& range, int depth) {
+void Builder::build_children(std::size_t node, const std::pair<Range, Range>& children, int depth,
+                             int threads) {
+    const auto& [first, second] = children;
+    if (threads < 2 || second.count() < kParallelBuildMinimum) {
+        build(first, depth + 1, threads);
+        nodes_[node].offset = static_cast<std::uint32_t>(nodes_.size());
+        build(second, depth + 1, threads);
+        return;
+    }
+    // The two children's references are disjoint ranges of refs_, so they can be
+    // partitioned at the same time.
+    std::vector<BvhNode> second_nodes;
+    second_nodes.reserve(2 * std::size_t{second.count()} - 1);
+    std::exception_ptr failure;
+    {
+        std::jthread helper([&] {
+            try {
+                Builder(refs_, second_nodes).build(second, depth + 1, threads / 2);
+            } catch (...) {
+                failure = std::current_exception();
+            }
+        });
+        build(first, depth + 1, threads - threads / 2);
+    }
+    if (failure) std::rethrow_exception(failure);
+    const auto base = static_cast<std::uint32_t>(nodes_.size());
+    nodes_[node].offset = base;
+    for (BvhNode n : second_nodes) {
+        if (!n.is_leaf()) n.offset += base;  // a leaf's offset is already a place in refs_
+        nodes_.push_back(n);
+    }
+}
+
+void Builder::build(const Range& range, int depth, int threads) {
     const std::size_t node = nodes_.size();
     nodes_.push_back({});
     for (int k = 0; k < 3; ++k) {
@@ -256,9 +296,7 @@ void Builder::build(const Range& range, int depth) {
         // Every centroid in one bin, or areas beyond a double: split evenly.
         children = sah.found ? sah.children : median_split(range, axis);
     }
-    build(children.first, depth + 1);
-    nodes_[node].offset = static_cast<std::uint32_t>(nodes_.size());
-    build(children.second, depth + 1);
+    build_children(node, children, depth, threads);
 }
 
 }  // namespace
@@ -271,7 +309,7 @@ BoxRay::BoxRay(const Ray& ray) {
     }
 }
 
-Bvh::Bvh(std::span<const Bounds> boxes) {
+Bvh::Bvh(std::span<const Bounds> boxes, int threads) {
     if (boxes.empty()) return;
     std::vector<Reference> refs;
     refs.reserve(boxes.size());
@@ -280,7 +318,7 @@ Bvh::Bvh(std::span<const Bounds> boxes) {
     // reallocating (pages never touched cost no memory), and the fit afterwards trims it.
     nodes_.reserve(2 * boxes.size() - 1);
     Builder builder(refs, nodes_);
-    builder.build(builder.whole(), 0);
+    builder.build(builder.whole(), 0, threads);
     nodes_.shrink_to_fit();
     order_.reserve(refs.size());
     for (const Reference& r : refs) order_.push_back(r.index);

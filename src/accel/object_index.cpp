@@ -22,7 +22,8 @@ bool finite_box(const Bounds& b) {
 
 }  // namespace
 
-ObjectIndex::ObjectIndex(std::span<const Object> objects) : object_count_(objects.size()) {
+ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
+    : object_count_(objects.size()) {
     if (objects.size() > std::numeric_limits<std::uint32_t>::max())
         throw std::length_error("too many objects for the hierarchy");
     std::vector<Bounds> boxes;
@@ -38,7 +39,7 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects) : object_count_(object
             unbounded.push_back(entry);
         }
     }
-    bvh_ = Bvh(boxes);
+    bvh_ = Bvh(boxes, threads);
     entries_.reserve(objects.size());
     for (const std::uint32_t i : bvh_.take_order()) entries_.push_back(bounded[i]);
     bounded_count_ = entries_.size();
