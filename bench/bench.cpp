@@ -57,7 +57,7 @@ Figures measure(const std::string& file, rt::RenderOptions options, int repeat) 
     f.read_s = seconds_since(start);
 
     start = Clock::now();
-    if (options.accelerate) scene.build_index();
+    if (options.accelerate) scene.build_index(rt::worker_threads(options.threads));  // as rt does
     f.build_s = seconds_since(start);
 
     std::vector<double> times;
