@@ -20,7 +20,11 @@ int run(const rt::CommandLine& cl) {
     if (cl.read_only) {
         const std::string name = cl.input == "-" ? "<stdin>" : cl.input;
         std::cout << name << ": " << scene.objects.size() << " objects, " << scene.lights.size()
-                  << " lights, " << scene.viewer.xres << "x" << scene.viewer.yres << "\n";
+                  << " lights, " << scene.viewer.xres << "x" << scene.viewer.yres;
+        if (const std::size_t n = scene.skipped_triangles; n != 0)
+            std::cout << ", " << n << " zero-area " << (n == 1 ? "triangle" : "triangles")
+                      << " skipped";
+        std::cout << "\n";
         return kExitOk;
     }
     // The output file is claimed before rendering, so a bad path fails fast, and is only

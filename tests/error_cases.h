@@ -67,6 +67,27 @@ inline std::vector<ErrorCase> scene_error_cases() {
         {kViewer + "\"quoted\"", "test.in:2:1: expected object ID (a number), got a quoted string"},
         {kViewer + "\"unterminated", "test.in:2:1: unterminated quoted path"},
         {kViewer + std::string(5000, '1'), "test.in:2:1: token longer than 4096 characters"},
+        // The mesh (14): counts, vertices and indices, each at its own place.
+        {kViewer + "14 4 2  0 0 0  1 0 0  0 1 0  0 0 1  0 1 2  0 1 4" + kSurface,
+         "test.in:2:48: mesh triangle 1 vertex index must be in [0, 4), got 4"},
+        {kViewer + "14 4 1  0 0 0  1 0 0  0 1 0  0 0 1  0 -1 2" + kSurface,
+         "test.in:2:39: mesh triangle 0 vertex index must be in [0, 4), got -1"},
+        {kViewer + "14 3 1\n0 0 0\n1 0 0\n0 1 0\n0 1 12345678901" + kSurface,
+         "test.in:6:5: mesh triangle 0 vertex index must be in [0, 3), got 12345678901"},
+        {kViewer + "14 4 1  0 0 0  1 0 0  0 1 0  0 0 1  1.5 1 2" + kSurface,
+         "test.in:2:37: mesh triangle 0 vertex index must be a whole number, got 1.5"},
+        {kViewer + "14 2 1  0 0 0  1 0 0  0 1 1" + kSurface,
+         "test.in:2:4: mesh vertex count must be between 3 and 2147483647, got 2"},
+        {kViewer + "14 3 0  0 0 0  1 0 0  0 1 0" + kSurface,
+         "test.in:2:6: mesh triangle count must be between 1 and 2147483647, got 0"},
+        {kViewer + "14 3 2  0 0 0  1 0 0  0 1 0  0 1 2",
+         "test.in:2:35: unexpected end of file: expected mesh triangle 1 vertex index"},
+        {kViewer + "14 3 2  0 0 0  1 0 0  2 0 0  0 1 2  0 0 1" + kSurface,
+         "test.in:2:6: mesh has no triangle with non-zero area (all 2 are degenerate)"},
+        {kViewer + "14 3 1  0 0 0  1 0 0  0 2e100 0  0 1 2" + kSurface,
+         "test.in:2:23: mesh vertex 2 coordinates must be at most 1e+100 in absolute value"},
+        {kViewer + "14 3 1  0 0 0  1 x 0  0 1 0  0 1 2" + kSurface,
+         "test.in:2:18: expected mesh vertex 1 (a number), got 'x'"},
     };
 }
 

@@ -478,9 +478,9 @@ TEST(triangle_edges_and_corners) {
 
 TEST(triangles_sharing_an_edge_leave_no_gap_beside_it) {
     // A flat quadrilateral split along its diagonal b c: rays aimed a hair (1e-9 of the
-    // diagonal's length) to either side of the diagonal hit the triangle on that side. (Rays
-    // aimed exactly at the diagonal, to the last bit, may miss both: the two triangles round
-    // their edge coordinates independently.)
+    // diagonal's length) to either side of the diagonal hit the triangle on that side, and
+    // rays aimed at the diagonal itself hit at least one of the two (the test is watertight:
+    // both triangles decide the side of their shared edge from the same numbers).
     Random random(50);
     for (int i = 0; i < 200; ++i) {
         const Vec3 a = random.in_box(3), b = random.in_box(3), c = random.in_box(3);
@@ -504,6 +504,8 @@ TEST(triangles_sharing_an_edge_leave_no_gap_beside_it) {
             const Ray ray_d = ray_toward(random, on_edge - step);
             CHECK(first_hit(second, ray_d).has_value());
             CHECK(!first_hit(first, ray_d).has_value());
+            const Ray ray_edge = ray_toward(random, on_edge);
+            CHECK(first_hit(first, ray_edge) || first_hit(second, ray_edge));
         }
     }
 }

@@ -1,4 +1,9 @@
 // The reader: lexical rules, structure, and every error of the contract with its place.
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+
 #include "error_cases.h"
 #include "scene_util.h"
 
@@ -62,5 +67,114 @@ TEST(table_lookup) {
     for (const PrimitiveType& row : primitive_types()) {
         CHECK(row.id >= 1 && row.id <= 99);
         CHECK(row.read && row.intersect && row.normal && row.bounds);
+    }
+}
+
+TEST(numbers_are_read_as_strtod_reads_them) {
+    // The reader parses plain decimals itself and leaves the rest to strtod: the value must be
+    // strtod's to the last bit, and what strtod refuses (or reads only in part) is refused.
+    auto read_number = [](const std::string& text, double& value) {
+        std::istringstream in(text);
+        SceneReader reader(in, "test.in", {});
+        try {
+            value = reader.number("n");
+        } catch (const Error&) {
+            return false;
+        }
+        return true;
+    };
+    auto check = [&](const std::string& text) {
+        char* end = nullptr;
+        const double expected = std::strtod(text.c_str(), &end);
+        const bool valid = end != text.c_str() && *end == '\0' && std::isfinite(expected);
+        double value = 0;
+        const bool read = read_number(text, value);
+        CHECK_EQ(read, valid);
+        if (read && valid && !(value == expected && std::signbit(value) == std::signbit(expected)))
+            rt_test::record_failure(__FILE__, __LINE__, join(text, " read as ", value));
+    };
+    for (const char* text : {"1",
+                             "-0.5",
+                             "2e-3",
+                             ".5",
+                             "5.",
+                             "-0",
+                             "+0",
+                             "+1.5",
+                             "0x1p-2",
+                             "-0X1.8P3",
+                             "1e308",
+                             "1.7976931348623157e308",
+                             "1.7976931348623159e308",
+                             "1e999",
+                             "-1e999",
+                             "1e-400",
+                             "4.9e-324",
+                             "2.4e-324",
+                             "2.5e-324",
+                             "1e-320",
+                             "0.1000000000000000055511151231257827",
+                             "9007199254740993",
+                             "1E5",
+                             "1e+5",
+                             "00012",
+                             "inf",
+                             "-inf",
+                             "nan",
+                             "NAN",
+                             "infinity",
+                             "1e",
+                             "1e+",
+                             "--1",
+                             "1.5.5",
+                             ".",
+                             "-",
+                             "e5",
+                             "0x",
+                             "1,5",
+                             "1f",
+                             "0b1",
+                             "12345678901"})
+        check(text);
+    Random random(123);
+    for (int i = 0; i < 5000; ++i) {
+        std::string text;
+        const auto pick = random.next();
+        if (pick % 4 == 1) text += '-';
+        if (pick % 16 == 3) text += '+';
+        const int digits = 1 + static_cast<int>(random.next() % 25);
+        const int point = static_cast<int>(random.next() % (digits + 2)) - 1;
+        for (int d = 0; d < digits; ++d) {
+            if (d == point) text += '.';
+            text += static_cast<char>('0' + random.next() % 10);
+        }
+        if (random.next() % 2 == 0) text += join('e', static_cast<int>(random.next() % 700) - 350);
+        check(text);
+    }
+}
+
+TEST(reading_in_chunks_keeps_every_place) {
+    // Tokens, comments and line ends falling across the lexer's 64 KiB chunks, at every offset
+    // near the boundary: the scene reads, and an error after it has its exact place.
+    for (int pad = 0; pad < 40; ++pad) {
+        std::string text = kViewer;
+        int line = 2, lights = 0;
+        while (text.size() < 65536 - 40 + static_cast<std::size_t>(pad)) {
+            text += "103 0.125 0.25 0.5 # ambient\r\n";
+            ++line;
+            ++lights;
+        }
+        text += std::string(static_cast<std::size_t>(pad % 7), ' ');
+        text += "103 1.0000000000000002 0.25 -0.5e-300\n";
+        text += "# a comment across the boundary\n";
+        line += 2;
+        const Scene scene = parse_scene(text);
+        CHECK_EQ(scene.ambient[0], 0.125 * lights + 1.0000000000000002);
+        CHECK_CONTAINS(scene_error(text + "  x"),
+                       join("test.in:", line, ":3: expected object ID (a number), got 'x'"));
+        CHECK_CONTAINS(scene_error(text + "103 1 2"),
+                       join("test.in:", line, ":8: unexpected end of file"));
+        CHECK_CONTAINS(scene_error(text + " 103 1 " + std::string(5000, '2')),
+                       join("test.in:", line, ":8: token longer than 4096 characters"));
     }
 }

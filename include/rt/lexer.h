@@ -4,7 +4,7 @@
 
 #include <cstddef>
 #include <istream>
-#include <optional>
+#include <memory>
 #include <string>
 #include <string_view>
 
@@ -30,24 +30,36 @@ inline constexpr std::size_t kMaxTokenLength = 4096;
 
 class Lexer {
   public:
-    Lexer(std::istream& in, std::string name) : in_(in), name_(std::move(name)) {}
+    Lexer(std::istream& in, std::string name);
 
     // The next token without consuming it.
     const Token& peek();
-    Token next();
+    // The next token, consumed. The reference stays valid until the next call to peek or next
+    // (the lexer reuses one token, so reading allocates nothing once its text has grown).
+    const Token& next();
 
     const std::string& name() const { return name_; }
     // Throws rt::Error with the message prefixed by "name:line:col: ".
     [[noreturn]] void fail(Location where, std::string_view message) const;
 
   private:
-    int get();
-    Token scan();
+    // The input is read in chunks of this many bytes, not a character at a time.
+    static constexpr std::size_t kChunkSize = 64 * 1024;
+
+    bool fill();
+    void scan();
+    void skip_space_and_comments();
+    void scan_quoted();
+    void scan_plain();
 
     std::istream& in_;
     std::string name_;
-    std::optional<Token> peeked_;
-    Location here_;
+    std::unique_ptr<char[]> chunk_;
+    std::size_t pos_ = 0;  // the next unread byte of chunk_
+    std::size_t end_ = 0;  // one past the last byte read into chunk_
+    Token token_;
+    bool peeked_ = false;  // token_ holds the next token, not yet consumed
+    Location here_;        // where chunk_[pos_] is in the input
 };
 
 }  // namespace rt

@@ -33,8 +33,10 @@ inline constexpr long kMaxPixels = 64L * 1024 * 1024;
 class SceneReader {
   public:
     // name is used in messages ("<stdin>" for standard input); relative texture paths are
-    // resolved against base_dir.
-    SceneReader(std::istream& in, std::string name, std::filesystem::path base_dir);
+    // resolved against base_dir. Objects that build hierarchies of their own (meshes) build
+    // them on up to `threads` threads; what they build is the same for any number.
+    SceneReader(std::istream& in, std::string name, std::filesystem::path base_dir,
+                int threads = 1);
 
     // The scene as read, without its hierarchy (Scene::build_index builds it).
     Scene read_scene();
@@ -56,6 +58,11 @@ class SceneReader {
     Shape shape(std::string_view what);
     SurfacePtr surface();
     Light light(std::string_view what);
+
+    int threads() const { return threads_; }
+    // A mesh reports the zero-area triangles it skipped; the scene carries the total.
+    void count_skipped_triangles(std::size_t count) { skipped_triangles_ += count; }
+    std::size_t skipped_triangles() const { return skipped_triangles_; }
 
     // Where the next token starts: read it before a field to report errors about that field.
     Location next_location() { return lexer_.peek().where; }
@@ -85,6 +92,8 @@ class SceneReader {
     SurfacePtr default_surface_;
     std::map<std::filesystem::path, std::shared_ptr<const Image>> textures_;
     int depth_ = 0;
+    std::size_t skipped_triangles_ = 0;
+    int threads_ = 1;
 };
 
 // A number as messages show it (%g).

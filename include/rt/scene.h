@@ -23,6 +23,8 @@ struct Scene {
     std::vector<Light> lights;
     Spectrum ambient{0.0};  // the sum of the ambient lights (ID 103)
     ObjectIndex index;      // the hierarchy over `objects`, once build_index() has run
+    // Zero-area triangles that meshes left out (they are accepted, not errors).
+    std::size_t skipped_triangles = 0;
 
     // Builds the hierarchy over the objects on up to `threads` threads (the same hierarchy
     // for any number); read_scene() and read_scene_file() call it.

@@ -93,3 +93,10 @@ NormalFn normal;
 BoundsFn bounds;
 InsideFn inside;
 }  // namespace rt::box
+
+namespace rt::mesh {
+ReadShapeFn read;
+IntersectFn intersect;
+NormalFn normal;
+BoundsFn bounds;
+}  // namespace rt::mesh

@@ -30,6 +30,7 @@ constexpr std::array kPrimitiveTypes{
     PrimitiveType{11, "polygon", polygon::read, polygon::intersect, polygon::normal,
                   polygon::bounds, nullptr},
     PrimitiveType{12, "box", box::read, box::intersect, box::normal, box::bounds, box::inside},
+    PrimitiveType{14, "mesh", mesh::read, mesh::intersect, mesh::normal, mesh::bounds, nullptr},
 };
 
 static_assert(strictly_sorted_by_id(kPrimitiveTypes), "rows sorted by ID, each ID once");
