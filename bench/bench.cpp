@@ -1,8 +1,17 @@
-// Prints figures: the time to render scenes, and intersection throughput per primitive type.
-//   rt_bench [--threads N] [--repeat N] scene.in ...
+// Times rt's stages on each scene file: reading, building the object hierarchy, rendering
+// (the median of --repeat renders), the rays traced per second, and the peak memory.
+//   rt_bench [--threads N] [--depth N] [--repeat N] [--linear] scene.in ...
+// --linear renders with the hierarchy turned off (every ray tests every object).
+// Peak memory is the process's peak so far (getrusage's ru_maxrss), so it is the figure of
+// one scene only when rt_bench is given one scene; bench/run runs it once per scene.
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -19,72 +28,108 @@ double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// The best of several runs is the least disturbed by other work on the machine.
-double best_render_seconds(const rt::Scene& scene, const rt::RenderOptions& options, int repeat) {
-    double best = 1e300;
-    for (int i = 0; i < repeat; ++i) {
-        const auto start = Clock::now();
-        const rt::Raster raster = rt::render(scene, options);
-        best = std::min(best, seconds_since(start));
-        if (raster.width() == 0) std::abort();
-    }
-    return best;
+double median(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    const std::size_t n = values.size();
+    return n % 2 == 1 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
 }
 
-// Intersection tests per second for each object in the scene, against the primary rays.
-void intersection_rates(const rt::Scene& scene) {
-    const rt::Viewer& v = scene.viewer;
-    std::vector<rt::Ray> rays;
-    for (int y = 0; y < v.yres; y += 2)
-        for (int x = 0; x < v.xres; x += 2) rays.push_back(v.primary_ray(x, y));
-    for (const rt::Object& object : scene.objects) {
-        const auto start = Clock::now();
-        std::size_t tests = 0, hits = 0;
-        while (seconds_since(start) < 0.05) {
-            for (const rt::Ray& ray : rays) {
-                rt::Hit hit;
-                hits += object.shape.intersect(ray, {1e-7, rt::kInfinity}, hit) ? 1 : 0;
-            }
-            tests += rays.size();
-        }
-        const double rate = static_cast<double>(tests) / seconds_since(start);
-        std::cout << "    " << object.shape.type->name << ": " << rate / 1e6
-                  << " M intersections/s ("
-                  << 100.0 * static_cast<double>(hits) / static_cast<double>(tests) << "% hit)\n";
+double peak_megabytes() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return static_cast<double>(usage.ru_maxrss) / 1024;  // Linux reports KiB
+}
+
+struct Figures {
+    std::size_t objects = 0;
+    int xres = 0, yres = 0;
+    double read_s = 0, build_s = 0, render_s = 0;
+    rt::RenderStats rays;
+};
+
+Figures measure(const std::string& file, rt::RenderOptions options, int repeat) {
+    Figures f;
+    auto start = Clock::now();
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw rt::Error(file + ": cannot open");
+    rt::Scene scene =
+        rt::SceneReader(in, file, std::filesystem::path(file).parent_path()).read_scene();
+    f.read_s = seconds_since(start);
+
+    start = Clock::now();
+    if (options.accelerate) scene.build_index(rt::worker_threads(options.threads));  // as rt does
+    f.build_s = seconds_since(start);
+
+    std::vector<double> times;
+    for (int i = 0; i < repeat; ++i) {
+        rt::RenderStats rays;  // the same every time: rendering is deterministic
+        start = Clock::now();
+        rt::render(scene, options, &rays);
+        times.push_back(seconds_since(start));
+        f.rays = rays;
     }
+    f.render_s = median(times);
+    f.objects = scene.objects.size();
+    f.xres = scene.viewer.xres;
+    f.yres = scene.viewer.yres;
+    return f;
+}
+
+void print_header() {
+    std::printf("%-16s %9s %11s %8s %8s %9s %8s %10s %12s %9s %8s\n", "scene", "objects", "size",
+                "read_s", "build_s", "render_s", "Mrays/s", "primary_M", "secondary_M", "shadow_M",
+                "peak_MB");
+}
+
+void print_row(const std::string& name, const Figures& f) {
+    const auto millions = [](std::uint64_t n) { return static_cast<double>(n) / 1e6; };
+    const std::string size = std::to_string(f.xres) + "x" + std::to_string(f.yres);
+    std::printf("%-16s %9zu %11s %8.3f %8.3f %9.3f %8.2f %10.3f %12.3f %9.3f %8.1f\n", name.c_str(),
+                f.objects, size.c_str(), f.read_s, f.build_s, f.render_s,
+                millions(f.rays.total()) / f.render_s, millions(f.rays.primary_rays),
+                millions(f.rays.secondary_rays), millions(f.rays.shadow_rays), peak_megabytes());
+    std::fflush(stdout);
+}
+
+int usage() {
+    std::cerr << "usage: rt_bench [--threads N] [--depth N] [--repeat N] [--linear] "
+                 "scene.in ...\n";
+    return 2;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    int threads = 0, repeat = 3;
-    std::vector<std::string> scenes;
+    rt::RenderOptions options;  // rt's defaults: depth 7, weight cut-off 0.01
+    int repeat = 1;
+    std::vector<std::string> files;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
-        if (arg == "--threads" && i + 1 < argc) {
-            threads = std::atoi(argv[++i]);
-        } else if (arg == "--repeat" && i + 1 < argc) {
+        const bool has_value = i + 1 < argc;
+        if (arg == "--threads" && has_value) {
+            options.threads = std::max(0, std::atoi(argv[++i]));
+        } else if (arg == "--depth" && has_value) {
+            options.max_depth = std::max(0, std::atoi(argv[++i]));
+        } else if (arg == "--repeat" && has_value) {
             repeat = std::max(1, std::atoi(argv[++i]));
+        } else if (arg == "--linear") {
+            options.accelerate = false;
+        } else if (arg.starts_with("-")) {
+            return usage();
         } else {
-            scenes.push_back(arg);
+            files.push_back(arg);
         }
     }
-    try {
-        for (const std::string& file : scenes) {
-            const rt::Scene scene = rt::read_scene_file(file);
-            rt::RenderOptions options;
-            options.threads = threads;
-            const double s = best_render_seconds(scene, options, repeat);
-            const double pixels = static_cast<double>(scene.viewer.xres) * scene.viewer.yres;
-            std::cout << file << ": " << scene.viewer.xres << "x" << scene.viewer.yres << ", "
-                      << scene.objects.size() << " objects, best of " << repeat << ": " << s * 1000
-                      << " ms (" << pixels / s / 1e6 << " Mpixels/s, threads "
-                      << (threads > 0 ? std::to_string(threads) : "auto") << ")\n";
-            intersection_rates(scene);
+    if (files.empty()) return usage();
+    print_header();
+    int status = 0;
+    for (const std::string& file : files) {
+        try {
+            print_row(std::filesystem::path(file).stem().string(), measure(file, options, repeat));
+        } catch (const std::exception& e) {  // rt::Error for the scene, bad_alloc, ...
+            std::cerr << e.what() << "\n";
+            status = 1;
         }
-    } catch (const rt::Error& e) {
-        std::cerr << e.what() << "\n";
-        return 1;
     }
-    return 0;
+    return status;
 }

@@ -1,0 +1,398 @@
+// Writes the benchmark scenes, each twice: as an rt scene (NAME.in) and as the equivalent
+// POV-Ray 3.7 scene (NAME.pov), so that both renderers can be timed on the same picture.
+//   rt_bench_scenes [--size N] DIR [SCENE ...]
+// SCENE is spheres-COUNT, mesh-COUNT (triangles) or mirror-COUNT (spheres, a square grid);
+// COUNT may end in k or m. The default is spheres-10k spheres-100k spheres-1m mesh-500k
+// mirror-49. --size sets the image's width and height (default 1024). The output depends only
+// on the arguments: every random number comes from a fixed seed.
+//
+// How the two files are made to render the same picture (bench/README.md says more):
+// - Camera: rt traces pixel (X, Y) through the pixel's corner, p0 + a x + b y with
+//   a = (2X - xres) / xres and b = -(2Y - yres) / yres; POV-Ray's perspective camera traces
+//   the pixel's centre, direction + u right + v up with u = (X + 1/2) / xres - 1/2 and
+//   v = 1/2 - (Y + 1/2) / yres. With right = 2x, up = 2y and direction = (p0 - e) - x / xres
+//   + y / yres the two rays coincide.
+// - Shading: rt's simple surface (colour c, ks, ke, kd) lights a point with
+//   I_a kd c + sum over lights of I (kd c (n.s) + ks max(0, r.s)^ke) + ks (reflected ray).
+//   POV-Ray's finish { ambient kd diffuse kd phong ks phong_size ke reflection ks } with
+//   global ambient_light I_a computes the same terms; assumed_gamma 1 keeps its colours
+//   linear like rt's, and the background is I_a because rt's escaping rays bring back I_a.
+// - Depth: rt's -d D traces D generations of secondary rays after the primary ray;
+//   POV-Ray counts the primary ray as level 1, so max_trace_level is D + 1. adc_bailout
+//   matches rt's default weight cut-off (-w 0.01).
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <numbers>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace {
+
+struct Vec {
+    double x = 0, y = 0, z = 0;
+};
+Vec operator+(Vec a, Vec b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+Vec operator-(Vec a, Vec b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+Vec operator*(double s, Vec a) { return {s * a.x, s * a.y, s * a.z}; }
+double dot(Vec a, Vec b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+Vec cross(Vec a, Vec b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+Vec normalized(Vec a) { return (1 / std::sqrt(dot(a, a))) * a; }
+
+// Uniform numbers from a fixed seed. The engine's output is fixed by the C++ standard, the
+// standard distributions' is not, so the mapping to [lo, hi) is done here.
+class Random {
+  public:
+    explicit Random(std::uint64_t seed) : engine_(seed) {}
+    double uniform(double lo, double hi) {
+        return lo + (hi - lo) * static_cast<double>(engine_() >> 11) * 0x1p-53;
+    }
+
+  private:
+    std::mt19937_64 engine_;
+};
+
+// rt's simple surface (ID 100) without transmission: kt = 0, ior = 1.
+struct Finish {
+    Vec colour;
+    double ks = 0, ke = 1, kd = 1;
+};
+
+struct Sphere {
+    Vec centre;
+    double radius = 1;
+};
+
+// Spheres that share one finish: rt reads them after one default surface (105, then 106
+// for each), POV-Ray after one #declare, which keeps both files small.
+struct SphereGroup {
+    Finish finish;
+    std::vector<Sphere> spheres;
+};
+
+struct Plane {
+    Vec normal;  // unit length, so that rt and POV-Ray read the same offset
+    double offset = 0;
+    Finish finish;
+};
+
+struct Mesh {
+    std::vector<Vec> vertices;
+    std::vector<std::array<std::size_t, 3>> triangles;
+    Finish finish;
+};
+
+struct Camera {
+    Vec eye, look_at, x, y;
+    int xres = 0, yres = 0;
+};
+
+struct Light {
+    Vec position, intensity;
+};
+
+struct Scene {
+    std::string name;
+    int depth = 0;  // rt's -d
+    Camera camera;
+    Vec ambient;
+    std::vector<Light> lights;
+    std::vector<Plane> planes;
+    std::vector<SphereGroup> groups;
+    std::vector<Mesh> meshes;
+};
+
+// A camera at `eye` looking at `look_at`, with y up and the given horizontal field of view;
+// the pixels are square.
+Camera camera(Vec eye, Vec look_at, double fov_degrees, int size) {
+    const Vec forward = normalized(look_at - eye);
+    const Vec right = normalized(cross(forward, {0, 1, 0}));
+    const Vec up = cross(right, forward);
+    const double half_width = std::tan(fov_degrees * std::numbers::pi / 360);
+    return {eye, look_at, half_width * right, half_width * up, size, size};
+}
+
+// A scene with a floor (the plane y = 0), light from the upper left and, dimmer, from the
+// right, and a bluish sky; the scene is meant to be rendered to `depth`.
+Scene lit_scene(int depth, const Camera& view, const Finish& floor_finish) {
+    Scene scene;
+    scene.depth = depth;
+    scene.camera = view;
+    scene.ambient = {0.15, 0.18, 0.24};
+    scene.lights = {{{-30, 40, -25}, {0.8, 0.8, 0.75}}, {{35, 30, -10}, {0.45, 0.45, 0.5}}};
+    scene.planes.push_back({{0, 1, 0}, 0, floor_finish});
+    return scene;
+}
+
+Finish random_finish(Random& random) {
+    return {{random.uniform(0.2, 1), random.uniform(0.2, 1), random.uniform(0.2, 1)},
+            random.uniform(0.15, 0.45),
+            random.uniform(10, 80),
+            random.uniform(0.5, 0.8)};
+}
+
+// `count` spheres over a 20 x 20 square of floor. The radius shrinks as 1/sqrt(count) and the
+// layer they float in with it, so every count covers the same share of the floor: a larger
+// count is the same picture with finer grain, seen by the same camera.
+Scene spheres(long count, int size) {
+    Scene scene =
+        lit_scene(3, camera({0, 18, -15}, {0, 0, 1}, 45, size), {{0.6, 0.6, 0.6}, 0.1, 10, 0.8});
+    Random random(1);
+    const double radius = 0.085 * std::sqrt(1e4 / static_cast<double>(count));
+    constexpr long kFinishes = 16;
+    for (long g = 0; g < kFinishes; ++g) {
+        SphereGroup group{random_finish(random), {}};
+        for (long i = g; i < count; i += kFinishes) {
+            const double r = radius * random.uniform(0.6, 1.4);
+            group.spheres.push_back({{random.uniform(-10, 10), r + random.uniform(0, 2 * radius),
+                                      random.uniform(-10, 10)},
+                                     r});
+        }
+        scene.groups.push_back(std::move(group));
+    }
+    return scene;
+}
+
+// A (2, 3) torus knot: the curve winds twice round the vertical axis and three times round
+// the tube of a torus with radii 2 and 0.8. Returns the point at t in [0, 2 pi) and the
+// torus's normal there, which is perpendicular to the curve because the curve lies on it.
+std::array<Vec, 2> knot(double t) {
+    constexpr double kMajor = 2, kMinor = 0.8;
+    const double phi = 2 * t, theta = 3 * t;
+    const Vec normal{std::cos(theta) * std::cos(phi), std::sin(theta),
+                     std::cos(theta) * std::sin(phi)};
+    const Vec on_core{kMajor * std::cos(phi), 1.5, kMajor * std::sin(phi)};
+    return {on_core + kMinor * normal, normal};
+}
+
+// A ribbed tube round a torus knot, about `count` triangles, hovering over a floor.
+Scene mesh(long count, int size) {
+    Scene scene = lit_scene(3, camera({0, 6.5, -7.5}, {0, 1.2, 0}, 60, size),
+                            {{0.5, 0.55, 0.6}, 0.15, 10, 0.8});
+    // A ring of `around` vertices every step along the knot; two triangles per quad.
+    const std::size_t around =
+        std::max<std::size_t>(3, std::lround(std::sqrt(static_cast<double>(count) / 50)));
+    const std::size_t along = std::max<std::size_t>(3, count / (2 * around));
+    Mesh m;
+    m.finish = {{0.85, 0.6, 0.25}, 0.3, 40, 0.7};
+    for (std::size_t i = 0; i < along; ++i) {
+        const double t = 2 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(along);
+        const auto [centre, normal] = knot(t);
+        const Vec tangent = normalized(knot(t + 1e-6)[0] - knot(t - 1e-6)[0]);
+        const Vec binormal = cross(tangent, normal);
+        const double radius = 0.32 * (1 + 0.15 * std::sin(60 * t));  // 60 ribs
+        for (std::size_t j = 0; j < around; ++j) {
+            const double u =
+                2 * std::numbers::pi * static_cast<double>(j) / static_cast<double>(around);
+            m.vertices.push_back(centre + radius * (std::cos(u) * normal + std::sin(u) * binormal));
+        }
+    }
+    for (std::size_t i = 0; i < along; ++i) {
+        const std::size_t next = (i + 1) % along;
+        for (std::size_t j = 0; j < around; ++j) {
+            const std::size_t k = (j + 1) % around;
+            const std::size_t a = i * around + j, b = next * around + j;
+            const std::size_t c = next * around + k, d = i * around + k;
+            m.triangles.push_back({a, b, c});
+            m.triangles.push_back({a, c, d});
+        }
+    }
+    scene.meshes.push_back(std::move(m));
+    return scene;
+}
+
+// A square grid of mirror spheres on a mirror floor: many bounces per pixel.
+Scene mirror(long count, int size) {
+    const long side = std::max(1L, std::lround(std::sqrt(static_cast<double>(count))));
+    const double spacing = 2.2, extent = spacing * static_cast<double>(side - 1) / 2;
+    Scene scene = lit_scene(7, camera({0, extent + 3, -1.4 * extent - 5}, {0, 0, 0.5}, 50, size),
+                            {{0.5, 0.5, 0.55}, 0.5, 60, 0.5});
+    Random random(2);
+    for (long i = 0; i < side; ++i) {
+        for (long j = 0; j < side; ++j) {
+            const Finish tint{
+                {random.uniform(0.6, 1), random.uniform(0.6, 1), random.uniform(0.6, 1)},
+                0.8,
+                200,
+                0.15};
+            const Vec centre{static_cast<double>(i) * spacing - extent, 0.9,
+                             static_cast<double>(j) * spacing - extent};
+            scene.groups.push_back({tint, {{centre, 0.9}}});
+        }
+    }
+    return scene;
+}
+
+// Vectors as rt writes them, "x y z", and as POV-Ray does, "<x, y, z>".
+std::ostream& operator<<(std::ostream& out, Vec a) {
+    return out << a.x << ' ' << a.y << ' ' << a.z;
+}
+struct Pov {
+    Vec v;
+};
+std::ostream& operator<<(std::ostream& out, Pov p) {
+    return out << '<' << p.v.x << ", " << p.v.y << ", " << p.v.z << '>';
+}
+
+// A finish as rt's simple surface (ID 100) and as a POV-Ray texture.
+struct RtSurface {
+    const Finish& f;
+};
+std::ostream& operator<<(std::ostream& out, RtSurface s) {
+    return out << "100  " << s.f.colour << "  " << s.f.ks << ' ' << s.f.ke << ' ' << s.f.kd
+               << " 0 1";
+}
+struct PovTexture {
+    const Finish& f;
+};
+std::ostream& operator<<(std::ostream& out, PovTexture t) {
+    const Finish& f = t.f;
+    return out << "texture { pigment { rgb " << Pov{f.colour} << " } finish { ambient " << f.kd
+               << " diffuse " << f.kd << " phong " << f.ks << " phong_size " << f.ke
+               << " reflection " << f.ks << " } }";
+}
+
+void write_rt(std::ostream& out, const Scene& s) {
+    out << "# " << s.name << ": generated by rt_bench_scenes. Render with: rt -d " << s.depth
+        << "\n";
+    const Camera& c = s.camera;
+    out << "102  " << c.eye << "  " << c.look_at << "  " << c.x << "  " << c.y << "  " << c.xres
+        << ' ' << c.yres << "\n";
+    out << "103  " << s.ambient << "\n";
+    for (const Light& l : s.lights) out << "104  " << l.position << "  " << l.intensity << "\n";
+    for (const Plane& p : s.planes)
+        out << "2  " << p.offset << "  " << p.normal << "  " << RtSurface{p.finish} << "\n";
+    for (const SphereGroup& g : s.groups) {
+        out << "105  " << RtSurface{g.finish} << "\n";
+        for (const Sphere& sp : g.spheres) out << "1 " << sp.radius << ' ' << sp.centre << " 106\n";
+    }
+    for (const Mesh& m : s.meshes) {
+        out << "14  " << m.vertices.size() << ' ' << m.triangles.size() << "\n";
+        for (const Vec& p : m.vertices) out << p << "\n";
+        for (const auto& t : m.triangles) out << t[0] << ' ' << t[1] << ' ' << t[2] << "\n";
+        out << RtSurface{m.finish} << "\n";
+    }
+}
+
+void write_pov(std::ostream& out, const Scene& s) {
+    out << "// " << s.name << ": generated by rt_bench_scenes, the POV-Ray 3.7 equivalent of "
+        << s.name << ".in rendered with rt -d " << s.depth << "\n#version 3.7;\n";
+    out << "global_settings { assumed_gamma 1 max_trace_level " << s.depth + 1
+        << " adc_bailout 0.01 ambient_light rgb " << Pov{s.ambient} << " }\n";
+    out << "background { rgb " << Pov{s.ambient} << " }\n";
+    // Shifted by half a pixel so that POV-Ray's pixel centres fall on rt's pixel corners.
+    const Camera& c = s.camera;
+    const Vec direction =
+        normalized(c.look_at - c.eye) - (1.0 / c.xres) * c.x + (1.0 / c.yres) * c.y;
+    out << "camera { perspective location " << Pov{c.eye} << " direction " << Pov{direction}
+        << " right " << Pov{2 * c.x} << " up " << Pov{2 * c.y} << " }\n";
+    for (const Light& l : s.lights)
+        out << "light_source { " << Pov{l.position} << " color rgb " << Pov{l.intensity} << " }\n";
+    for (const Plane& p : s.planes)
+        out << "plane { " << Pov{p.normal} << ", " << p.offset << ' ' << PovTexture{p.finish}
+            << " }\n";
+    for (std::size_t i = 0; i < s.groups.size(); ++i) {
+        out << "#declare T" << i << " = " << PovTexture{s.groups[i].finish} << ";\n";
+        for (const Sphere& sp : s.groups[i].spheres)
+            out << "sphere { " << Pov{sp.centre} << ", " << sp.radius << " texture { T" << i
+                << " } }\n";
+    }
+    for (const Mesh& m : s.meshes) {
+        out << "mesh2 {\n  vertex_vectors { " << m.vertices.size();
+        for (const Vec& p : m.vertices) out << ",\n" << Pov{p};
+        out << " }\n  face_indices { " << m.triangles.size();
+        for (const auto& t : m.triangles)
+            out << ",\n<" << t[0] << ", " << t[1] << ", " << t[2] << '>';
+        out << " }\n  " << PovTexture{m.finish} << "\n}\n";
+    }
+}
+
+// "10k" is 10000, "1m" a million; at most 100 million.
+long parse_count(const std::string& text) {
+    constexpr long kMaxCount = 100'000'000;
+    std::size_t used = 0;
+    const long count = std::stol(text, &used);
+    const std::string suffix = text.substr(used);
+    const long scale = suffix == "k" ? 1000 : suffix == "m" ? 1000000 : suffix.empty() ? 1 : 0;
+    if (scale == 0 || count < 1 || count > kMaxCount / scale)
+        throw std::invalid_argument("bad count " + text);
+    return count * scale;
+}
+
+Scene make_scene(const std::string& name, int size) {
+    const std::size_t dash = name.find('-');
+    const std::string kind = name.substr(0, dash);
+    if (dash == std::string::npos) throw std::invalid_argument("no count");
+    const long count = parse_count(name.substr(dash + 1));
+    Scene scene = kind == "spheres"  ? spheres(count, size)
+                  : kind == "mesh"   ? mesh(count, size)
+                  : kind == "mirror" ? mirror(count, size)
+                                     : throw std::invalid_argument("unknown kind");
+    scene.name = name;
+    return scene;
+}
+
+void write_file(const std::filesystem::path& path, const Scene& scene,
+                void (*write)(std::ostream&, const Scene&)) {
+    std::ofstream out(path);
+    out.precision(7);  // plenty for both formats, and keeps the files small
+    write(out, scene);
+    out.close();
+    if (!out) throw std::runtime_error("cannot write " + path.string());
+}
+
+int usage() {
+    std::cerr << "usage: rt_bench_scenes [--size N] DIR [SCENE ...]\n"
+                 "  SCENE: spheres-COUNT, mesh-COUNT or mirror-COUNT; COUNT may end in k or m\n";
+    return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    int size = 1024;
+    std::filesystem::path dir;
+    std::vector<std::string> names;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--size" && i + 1 < argc) {
+            size = std::atoi(argv[++i]);
+            if (size < 1 || size > 16384) return usage();
+        } else if (arg.starts_with("-")) {
+            return usage();
+        } else if (dir.empty()) {
+            dir = arg;
+        } else {
+            names.push_back(arg);
+        }
+    }
+    if (dir.empty()) return usage();
+    if (names.empty())
+        names = {"spheres-10k", "spheres-100k", "spheres-1m", "mesh-500k", "mirror-49"};
+    try {
+        std::filesystem::create_directories(dir);
+        for (const std::string& name : names) {
+            Scene scene;
+            try {
+                scene = make_scene(name, size);
+            } catch (const std::logic_error&) {
+                std::cerr << "rt_bench_scenes: bad scene name '" << name << "'\n";
+                return usage();
+            }
+            write_file(dir / (name + ".in"), scene, write_rt);
+            write_file(dir / (name + ".pov"), scene, write_pov);
+        }
+    } catch (const std::exception& e) {
+        std::cerr << "rt_bench_scenes: " << e.what() << "\n";
+        return 1;
+    }
+    return 0;
+}
