@@ -233,7 +233,8 @@ Builder::SahSplit Builder::sah_split(const Range& range, int axis, double extent
 
 void Builder::build_children(std::size_t node, const std::pair<Range, Range>& children, int depth,
                              int threads) {
-    const auto& [first, second] = children;
+    const Range& first = children.first;
+    const Range& second = children.second;
     if (threads < 2 || second.count() < kParallelBuildMinimum) {
         build(first, depth + 1, threads);
         nodes_[node].offset = static_cast<std::uint32_t>(nodes_.size());
