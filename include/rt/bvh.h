@@ -32,12 +32,13 @@ class BoxRay {
     explicit BoxRay(const Ray& ray);
 
     // Whether the ray passes through the node's box somewhere in [t_min, t_max]; if so,
-    // t_enter is where it enters. The interval is widened by a relative margin so that a hit
-    // a primitive computes at the box's very edge, or at exactly t_max (a tie), is never
+    // t_enter is where (from t_min on) it enters. The range starts as [t_min, t_max], each
+    // slab narrows it, and the result is widened by a relative margin so that a hit a
+    // primitive computes at the box's very edge, or at exactly t_max (a tie), is never
     // pruned. A ray parallel to a slab whose origin lies on the slab's plane makes 0 * inf =
     // NaN there; the comparisons below then ignore that slab, which only keeps more.
     bool enters(const BvhNode& node, double t_min, double t_max, double& t_enter) const {
-        double near = -kInfinity, far = kInfinity;
+        double near = t_min, far = t_max;
         for (int k = 0; k < 3; ++k) {
             const double slab_near = (node.bound[near_side_[k]][k] - origin_[k]) * inverse_[k];
             const double slab_far = (node.bound[1 - near_side_[k]][k] - origin_[k]) * inverse_[k];
@@ -47,7 +48,7 @@ class BoxRay {
         near -= kMargin * std::fabs(near);
         far += kMargin * std::fabs(far);
         t_enter = near;
-        return near <= far && near <= t_max && far >= t_min;
+        return near <= far;
     }
 
   private:
