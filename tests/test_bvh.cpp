@@ -20,7 +20,7 @@ namespace {
 
 Bounds node_box(const BvhNode& n) {
     const auto& b = n.bound;
-    return {{b[0][0], b[0][1], b[0][2]}, {b[1][0], b[1][1], b[1][2]}};
+    return {{b[0], b[1], b[2]}, {b[3], b[4], b[5]}};
 }
 
 bool box_holds(const Bounds& outer, const Bounds& inner) {

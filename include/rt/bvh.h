@@ -14,7 +14,7 @@ namespace rt {
 // One node of the flattened tree: 32 bytes, two to a cache line. Boxes are floats rounded
 // outward, so a node's box always holds everything below it.
 struct BvhNode {
-    float bound[2][3];  // [0] the min corner, [1] the max corner
+    float bound[6];  // the min corner's x, y, z, then the max corner's
     // In a leaf, the first of its primitives in leaf order; in an interior node, the index of
     // the second child (the first child is always the next node).
     std::uint32_t offset;
@@ -40,8 +40,8 @@ class BoxRay {
     bool enters(const BvhNode& node, double t_min, double t_max, double& t_enter) const {
         double near = t_min, far = t_max;
         for (int k = 0; k < 3; ++k) {
-            const double slab_near = (node.bound[near_side_[k]][k] - origin_[k]) * inverse_[k];
-            const double slab_far = (node.bound[1 - near_side_[k]][k] - origin_[k]) * inverse_[k];
+            const double slab_near = (node.bound[near_bound_[k]] - origin_[k]) * inverse_[k];
+            const double slab_far = (node.bound[far_bound_[k]] - origin_[k]) * inverse_[k];
             if (slab_near > near) near = slab_near;
             if (slab_far < far) far = slab_far;
         }
@@ -55,7 +55,10 @@ class BoxRay {
     static constexpr double kMargin = 1e-9;
     double origin_[3];
     double inverse_[3];
-    int near_side_[3];  // 0 where the ray meets the min bound first, 1 where the max
+    // Per axis, which of a node's bounds the ray meets first and last: k for the min, 3 + k
+    // for the max.
+    int near_bound_[3];
+    int far_bound_[3];
 };
 
 class Bvh {

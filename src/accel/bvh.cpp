@@ -269,8 +269,8 @@ void Builder::build(const Range& range, int depth, int threads) {
     const std::size_t node = nodes_.size();
     nodes_.push_back({});
     for (int k = 0; k < 3; ++k) {
-        nodes_[node].bound[0][k] = range.box.lo[k];
-        nodes_[node].bound[1][k] = range.box.hi[k];
+        nodes_[node].bound[k] = range.box.lo[k];
+        nodes_[node].bound[3 + k] = range.box.hi[k];
     }
     const std::uint32_t count = range.count();
     if (count == 1) return make_leaf(node, range);
@@ -306,7 +306,9 @@ BoxRay::BoxRay(const Ray& ray) {
     for (int k = 0; k < 3; ++k) {
         origin_[k] = ray.origin[k];
         inverse_[k] = 1 / ray.direction[k];  // +-inf for a zero component: see enters()
-        near_side_[k] = std::signbit(inverse_[k]) ? 1 : 0;
+        const bool negative = std::signbit(inverse_[k]);
+        near_bound_[k] = negative ? 3 + k : k;
+        far_bound_[k] = negative ? k : 3 + k;
     }
 }
 
@@ -328,7 +330,7 @@ Bvh::Bvh(std::span<const Bounds> boxes, int threads) {
 Bounds Bvh::bounds() const {
     if (nodes_.empty()) return {};
     const auto& b = nodes_[0].bound;
-    return {{b[0][0], b[0][1], b[0][2]}, {b[1][0], b[1][1], b[1][2]}};
+    return {{b[0], b[1], b[2]}, {b[3], b[4], b[5]}};
 }
 
 }  // namespace rt
