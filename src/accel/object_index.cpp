@@ -71,12 +71,19 @@ bool ObjectIndex::closest(const Ray& ray, Interval range, Found& found) const {
 
 bool ObjectIndex::any(const Ray& ray, Interval range, Blocker* last) const {
     Hit hit;
+    // The last blocker is tried first; if it does not block, it is not tried again below
+    // (for a mesh that would be a second search of all its triangles).
+    std::uint32_t tried = kNoEntry;
     auto blocks = [&](std::uint32_t i) {
-        if (!entries_[i].intersect_any(entries_[i].data, ray, range, hit)) return false;
+        if (i == tried || !entries_[i].intersect_any(entries_[i].data, ray, range, hit))
+            return false;
         if (last != nullptr) last->entry = i;
         return true;
     };
-    if (last != nullptr && last->entry < entries_.size() && blocks(last->entry)) return true;
+    if (last != nullptr && last->entry < entries_.size()) {
+        if (blocks(last->entry)) return true;
+        tried = last->entry;
+    }
     for (auto i = static_cast<std::uint32_t>(bounded_count_); i < entries_.size(); ++i)
         if (blocks(i)) return true;
     return bvh_.any(ray, range.t_min, range.t_max, blocks);
