@@ -28,6 +28,8 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
         throw std::length_error("too many objects for the hierarchy");
     std::vector<Bounds> boxes;
     std::vector<Entry> bounded, unbounded;
+    boxes.reserve(objects.size());
+    bounded.reserve(objects.size());
     for (std::uint32_t i = 0; i < objects.size(); ++i) {
         const Shape& shape = objects[i].shape;
         const Entry entry{shape.type->intersect, shape.any_hit_function(), shape.data.get(), i};
