@@ -193,16 +193,7 @@ class SceneWriter {
         std::string previous;
         for (int i = 0; i < objects; ++i) {
             // Now and then the same object again: a tie the file order must break.
-            std::ostringstream one;
-            one.precision(17);
-            if (!previous.empty() && random_.uniform() < 0.05) {
-                text_ << previous << ' ' << surface() << '\n';
-                continue;
-            }
-            std::swap(one, text_);
-            primitive(0);
-            std::swap(one, text_);
-            previous = one.str();
+            if (previous.empty() || random_.uniform() >= 0.05) previous = primitive_text();
             text_ << previous << ' ' << surface() << '\n';
         }
         return text_.str();
@@ -251,6 +242,16 @@ class SceneWriter {
                 break;  // diffuse
         }
         return s.str();
+    }
+
+    // One primitive's text, written apart from the scene so that it can be repeated.
+    std::string primitive_text() {
+        std::ostringstream one;
+        one.precision(17);
+        std::swap(one, text_);
+        primitive(0);
+        std::swap(one, text_);
+        return one.str();
     }
 
     // One primitive (ID and numbers, no surface) around a random place.
@@ -364,12 +365,7 @@ class SceneWriter {
                 vec(f.e2 * random_.uniform(0.5, 1.5) + f.e1 * random_.uniform(-0.3, 0.3));
                 vec(f.e3 * random_.uniform(0.5, 1.5));
                 text_ << ' ';
-                std::ostringstream inner;
-                inner.precision(17);
-                std::swap(inner, text_);
                 primitive(nesting + 1);
-                std::swap(inner, text_);
-                text_ << inner.str();
                 break;
             }
         }

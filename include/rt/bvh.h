@@ -75,13 +75,10 @@ class Bvh {
     // boxes[i]; order() lists them as the leaves hold them.
     explicit Bvh(std::span<const Bounds> boxes, int threads = 1);
 
-    bool empty() const { return nodes_.empty(); }
     std::span<const BvhNode> nodes() const { return nodes_; }
     std::span<const std::uint32_t> order() const { return order_; }
     // Gives up the leaf order, for an owner that stores its primitives in that order itself.
     std::vector<std::uint32_t> take_order() { return std::move(order_); }
-    // The box of everything (empty when nothing was built).
-    Bounds bounds() const;
 
     // Calls visit(position) for each primitive (its place in leaf order) whose leaf the ray
     // may reach in [t_min, t_max], nearer leaves first. visit may lower t_max, the best hit

@@ -24,7 +24,7 @@ class ObjectIndex {
     // The object that last blocked a shadow ray toward one light. Neighbouring points are
     // mostly shadowed by the same object, so any() tries it first.
     struct Blocker {
-        std::uint32_t entry = kNoEntry;
+        std::uint32_t entry = kNone;
     };
 
     ObjectIndex() = default;
@@ -46,7 +46,8 @@ class ObjectIndex {
     bool any(const Ray& ray, Interval range, Blocker* last = nullptr) const;
 
   private:
-    static constexpr std::uint32_t kNoEntry = 0xffffffff;
+    // No entry, and no object: the largest 32-bit number, which indexes neither.
+    static constexpr std::uint32_t kNone = 0xffffffff;
 
     // What a test needs, stored contiguously in the order the leaves visit them.
     struct Entry {

@@ -327,10 +327,4 @@ Bvh::Bvh(std::span<const Bounds> boxes, int threads) {
     for (const Reference& r : refs) order_.push_back(r.index);
 }
 
-Bounds Bvh::bounds() const {
-    if (nodes_.empty()) return {};
-    const auto& b = nodes_[0].bound;
-    return {{b[0], b[1], b[2]}, {b[3], b[4], b[5]}};
-}
-
 }  // namespace rt

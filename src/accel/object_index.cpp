@@ -49,7 +49,6 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
 }
 
 bool ObjectIndex::closest(const Ray& ray, Interval range, Found& found) const {
-    constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
     double best = range.t_max;
     std::uint32_t best_object = kNone;
     auto test = [&](const Entry& e) {
@@ -75,7 +74,7 @@ bool ObjectIndex::any(const Ray& ray, Interval range, Blocker* last) const {
     Hit hit;
     // The last blocker is tried first; if it does not block, it is not tried again below
     // (for a mesh that would be a second search of all its triangles).
-    std::uint32_t tried = kNoEntry;
+    std::uint32_t tried = kNone;
     auto blocks = [&](std::uint32_t i) {
         if (i == tried || !entries_[i].intersect_any(entries_[i].data, ray, range, hit))
             return false;
