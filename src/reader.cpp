@@ -236,7 +236,8 @@ void SceneReader::read_top_level_object(Scene& scene, bool& have_viewer) {
     if (const PrimitiveType* type = find_primitive_type(small)) {
         Object object;
         object.shape = {type, type->read(*this)};
-        object.surface = surface();
+        // CSG (and an affine of CSG) carries its operands' surfaces and has none of its own.
+        if (!object.shape.carries_surfaces()) object.surface = surface();
         scene.objects.push_back(std::move(object));
     } else if (const LightType* light_type = find_light_type(small)) {
         scene.lights.push_back({light_type, light_type->read(*this)});

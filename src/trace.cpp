@@ -94,7 +94,7 @@ Spectrum Tracer::trace(const Ray& ray, int depth, double weight, double ior) con
     const Vec3 outward = object.shape.normal(point, found->hit);
     const bool leaving = dot(ray.direction, outward) > 0;
     const Vec3 facing = leaving ? -outward : outward;  // d in the Phong model
-    const Material m = object.surface->at(point);
+    const Material m = object.surface_at(found->hit).at(point);
     double ks = m.ks;
     Spectrum result(0.0);
 
@@ -128,7 +128,7 @@ Spectrum Tracer::shade_primary(const Ray& ray) const {
         case RenderMode::depth:
             return Spectrum(std::min(1.0, 1 / found->hit.t));
         case RenderMode::colour:
-            return found->object->surface->at(point).colour;
+            return found->object->surface_at(found->hit).at(point).colour;
         case RenderMode::normal: {
             const Vec3 n = found->object->shape.normal(point, found->hit);
             return Spectrum(std::fabs(dot(n, ray.direction)));

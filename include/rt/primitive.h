@@ -2,6 +2,7 @@
 // and the bounds and inside functions that bounding volumes and CSG need.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <span>
 
@@ -10,12 +11,29 @@
 namespace rt {
 
 class SceneReader;
+struct Surface;
 
 // What an intersect routine reports: the distance along the ray, and which part of a
 // primitive made of several (the face of a box, say) was hit, so the normal can use it.
+// Composites (CSG) also say which operand was hit and whose surface applies there.
 struct Hit {
     double t = kInfinity;
     int part = 0;
+    // For CSG: one bit per level, the innermost composite's choice (0: operand A, 1: B) in
+    // the lowest bit; each enclosing composite shifts it left and adds its own.
+    std::uint64_t path = 0;
+    // The surface of the operand that was hit; nullptr means the object's own surface.
+    const Surface* surface = nullptr;
+};
+
+// Where a ray crosses the boundary of a solid: the hit, whether the ray goes in or out
+// there, and whether the crossing is on a visible surface. A quadric's solid f < 0 is not
+// clipped by its box, so the ray can cross it where no surface is drawn; CSG needs those
+// crossings to know which side it is on.
+struct Crossing {
+    Hit hit;
+    bool entering = false;
+    bool visible = true;
 };
 
 // A primitive's parameters, owned here and seen only by the primitive's own source file.
@@ -32,9 +50,12 @@ using NormalFn = Vec3(const void* shape, const Vec3& point, const Hit& hit);
 using BoundsFn = Bounds(const void* shape);
 // True when a point lies inside a solid primitive.
 using InsideFn = bool(const void* shape, const Vec3& point);
-// Whether this instance encloses a volume, for the few types where that depends on the
-// parameters (an affine of a sphere does, an affine of a disk does not).
-using HasInsideFn = bool(const void* shape);
+// A property of one instance, for the few types where it depends on the parameters (an
+// affine of a sphere has an inside, an affine of a disk does not).
+using PropertyFn = bool(const void* shape);
+// The nearest crossing of a solid's boundary with range.t_min < t < range.t_max, including
+// crossings that are not visible. Returns false, leaving crossing alone, when there is none.
+using CrossFn = bool(const void* shape, const Ray& ray, Interval range, Crossing& crossing);
 
 struct PrimitiveType {
     int id;
@@ -43,13 +64,20 @@ struct PrimitiveType {
     IntersectFn* intersect;
     NormalFn* normal;
     BoundsFn* bounds;
-    InsideFn* inside;  // nullptr where the primitive encloses no volume (disk, triangle, ...)
+    InsideFn* inside = nullptr;  // nullptr where the primitive encloses no volume (disk, ...)
     // nullptr (the usual case) when every instance with an inside function has an inside.
-    HasInsideFn* has_inside = nullptr;
+    PropertyFn* has_inside = nullptr;
     // For shadow rays: true when any part of the primitive lies along the ray in range, with
     // `hit` left undefined, so a primitive made of many (a mesh) can stop at the first.
     // nullptr (the usual case) where intersect answers that as fast.
     IntersectFn* intersect_any = nullptr;
+    // For solids whose boundary can be crossed where nothing is visible (the clipped
+    // quadric, CSG). nullptr (the usual case): every crossing is an intersect hit, entering
+    // where the outward normal faces the ray.
+    CrossFn* cross = nullptr;
+    // True when the primitive carries its operands' surfaces, so no surface follows it in the
+    // scene (CSG, or an affine of CSG). nullptr: always false.
+    PropertyFn* carries_surfaces = nullptr;
 };
 
 // A primitive type with its parameters: what the scene stores for each primitive.
@@ -78,6 +106,11 @@ struct Shape {
     }
     // Only meaningful when has_inside().
     bool inside(const Vec3& point) const { return type->inside(data.get(), point); }
+    // The nearest crossing of the solid's boundary in range (only when has_inside()).
+    bool cross(const Ray& ray, Interval range, Crossing& crossing) const;
+    bool carries_surfaces() const {
+        return type->carries_surfaces != nullptr && type->carries_surfaces(data.get());
+    }
 };
 
 // The whole table, sorted by ID.

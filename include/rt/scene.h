@@ -14,7 +14,12 @@ namespace rt {
 // A primitive placed in the scene with its surface.
 struct Object {
     Shape shape;
-    SurfacePtr surface;
+    SurfacePtr surface;  // nullptr when the shape carries its operands' surfaces (CSG)
+
+    // The surface at a hit on this object: the operand's where a composite reports one.
+    const Surface& surface_at(const Hit& hit) const {
+        return hit.surface != nullptr ? *hit.surface : *surface;
+    }
 };
 
 struct Scene {

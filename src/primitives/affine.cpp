@@ -51,7 +51,21 @@ bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
     const double t = local_hit.t / local->scale;
     // Dividing back can round just outside the range the inner primitive kept to.
     if (!range.contains(t)) return false;
-    hit = {t, local_hit.part};
+    hit = local_hit;  // the part, and for CSG which operand and surface
+    hit.t = t;
+    return true;
+}
+
+bool cross(const void* shape, const Ray& ray, Interval range, Crossing& crossing) {
+    const auto& a = *static_cast<const Affine*>(shape);
+    const auto local = to_local(a, ray);
+    Crossing local_crossing;
+    if (!local || !a.inner.cross(local->ray, local->range(range), local_crossing)) return false;
+    // Going in or out is a property of the path, which the frame carries over unchanged.
+    const double t = local_crossing.hit.t / local->scale;
+    if (!range.contains(t)) return false;
+    crossing = local_crossing;
+    crossing.hit.t = t;
     return true;
 }
 
@@ -70,6 +84,10 @@ Vec3 normal(const void* shape, const Vec3& point, const Hit& hit) {
 Bounds bounds(const void* shape) { return static_cast<const Affine*>(shape)->box; }
 
 bool has_inside(const void* shape) { return static_cast<const Affine*>(shape)->inner.has_inside(); }
+
+bool carries_surfaces(const void* shape) {
+    return static_cast<const Affine*>(shape)->inner.carries_surfaces();
+}
 
 bool inside(const void* shape, const Vec3& point) {
     const auto& a = *static_cast<const Affine*>(shape);

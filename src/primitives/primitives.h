@@ -55,7 +55,9 @@ IntersectFn intersect_any;
 NormalFn normal;
 BoundsFn bounds;
 InsideFn inside;
-HasInsideFn has_inside;
+PropertyFn has_inside;
+CrossFn cross;
+PropertyFn carries_surfaces;
 }  // namespace rt::affine
 
 namespace rt::cone {

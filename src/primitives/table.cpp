@@ -1,5 +1,5 @@
 // The table of primitive types. Adding a primitive is its source file, its declarations in
-// primitives.h and one row here.
+// primitives.h and one row here. Columns left out of a row are nullptr (see primitive.h).
 #include "id_table.h"
 #include "primitives/primitives.h"
 
@@ -8,31 +8,43 @@ namespace rt {
 namespace {
 
 constexpr std::array kPrimitiveTypes{
-    PrimitiveType{1, "sphere", sphere::read, sphere::intersect, sphere::normal, sphere::bounds,
-                  sphere::inside},
-    PrimitiveType{2, "plane", plane::read, plane::intersect, plane::normal, plane::bounds,
-                  plane::inside},
-    PrimitiveType{3, "disk", disk::read, disk::intersect, disk::normal, disk::bounds, nullptr},
-    PrimitiveType{4, "annulus", annulus::read, annulus::intersect, annulus::normal, annulus::bounds,
-                  nullptr},
-    PrimitiveType{5, "triangle", triangle::read, triangle::intersect, triangle::normal,
-                  triangle::bounds, nullptr},
-    PrimitiveType{6, "parallelogram", parallelogram::read, parallelogram::intersect,
-                  parallelogram::normal, parallelogram::bounds, nullptr},
-    // Solid exactly when its inner primitive is, so it says so per instance.
-    PrimitiveType{7, "affine", affine::read, affine::intersect, affine::normal, affine::bounds,
-                  affine::inside, affine::has_inside, affine::intersect_any},
-    PrimitiveType{8, "cone", cone::read, cone::intersect, cone::normal, cone::bounds, nullptr},
-    PrimitiveType{9, "cylinder", cylinder::read, cylinder::intersect, cylinder::normal,
-                  cylinder::bounds, nullptr},
-    PrimitiveType{10, "torus", torus::read, torus::intersect, torus::normal, torus::bounds,
-                  torus::inside},
-    PrimitiveType{11, "polygon", polygon::read, polygon::intersect, polygon::normal,
-                  polygon::bounds, nullptr},
-    PrimitiveType{12, "box", box::read, box::intersect, box::normal, box::bounds, box::inside},
+    PrimitiveType{.id = 1, .name = "sphere", .read = sphere::read, .intersect = sphere::intersect,
+                  .normal = sphere::normal, .bounds = sphere::bounds, .inside = sphere::inside},
+    PrimitiveType{.id = 2, .name = "plane", .read = plane::read, .intersect = plane::intersect,
+                  .normal = plane::normal, .bounds = plane::bounds, .inside = plane::inside},
+    PrimitiveType{.id = 3, .name = "disk", .read = disk::read, .intersect = disk::intersect,
+                  .normal = disk::normal, .bounds = disk::bounds},
+    PrimitiveType{.id = 4, .name = "annulus", .read = annulus::read,
+                  .intersect = annulus::intersect, .normal = annulus::normal,
+                  .bounds = annulus::bounds},
+    PrimitiveType{.id = 5, .name = "triangle", .read = triangle::read,
+                  .intersect = triangle::intersect, .normal = triangle::normal,
+                  .bounds = triangle::bounds},
+    PrimitiveType{.id = 6, .name = "parallelogram", .read = parallelogram::read,
+                  .intersect = parallelogram::intersect, .normal = parallelogram::normal,
+                  .bounds = parallelogram::bounds},
+    // Solid, and carrying surfaces, exactly when its inner primitive is, so it says so per
+    // instance; it forwards everything else to the inner primitive too.
+    PrimitiveType{.id = 7, .name = "affine", .read = affine::read, .intersect = affine::intersect,
+                  .normal = affine::normal, .bounds = affine::bounds, .inside = affine::inside,
+                  .has_inside = affine::has_inside, .intersect_any = affine::intersect_any,
+                  .cross = affine::cross, .carries_surfaces = affine::carries_surfaces},
+    PrimitiveType{.id = 8, .name = "cone", .read = cone::read, .intersect = cone::intersect,
+                  .normal = cone::normal, .bounds = cone::bounds},
+    PrimitiveType{.id = 9, .name = "cylinder", .read = cylinder::read,
+                  .intersect = cylinder::intersect, .normal = cylinder::normal,
+                  .bounds = cylinder::bounds},
+    PrimitiveType{.id = 10, .name = "torus", .read = torus::read, .intersect = torus::intersect,
+                  .normal = torus::normal, .bounds = torus::bounds, .inside = torus::inside},
+    PrimitiveType{.id = 11, .name = "polygon", .read = polygon::read,
+                  .intersect = polygon::intersect, .normal = polygon::normal,
+                  .bounds = polygon::bounds},
+    PrimitiveType{.id = 12, .name = "box", .read = box::read, .intersect = box::intersect,
+                  .normal = box::normal, .bounds = box::bounds, .inside = box::inside},
     // A shadow ray stops at the first triangle it meets.
-    PrimitiveType{14, "mesh", mesh::read, mesh::intersect, mesh::normal, mesh::bounds, nullptr,
-                  nullptr, mesh::intersect_any},
+    PrimitiveType{.id = 14, .name = "mesh", .read = mesh::read, .intersect = mesh::intersect,
+                  .normal = mesh::normal, .bounds = mesh::bounds,
+                  .intersect_any = mesh::intersect_any},
 };
 
 static_assert(strictly_sorted_by_id(kPrimitiveTypes), "rows sorted by ID, each ID once");
@@ -42,5 +54,16 @@ static_assert(strictly_sorted_by_id(kPrimitiveTypes), "rows sorted by ID, each I
 std::span<const PrimitiveType> primitive_types() { return kPrimitiveTypes; }
 
 const PrimitiveType* find_primitive_type(int id) { return find_by_id(kPrimitiveTypes, id); }
+
+bool Shape::cross(const Ray& ray, Interval range, Crossing& crossing) const {
+    if (type->cross != nullptr) return type->cross(data.get(), ray, range, crossing);
+    // Every crossing of an ordinary solid is a visible hit; the outward normal says which way.
+    Hit hit;
+    if (!intersect(ray, range, hit)) return false;
+    crossing.hit = hit;
+    crossing.entering = dot(normal(ray.at(hit.t), hit), ray.direction) < 0;
+    crossing.visible = true;
+    return true;
+}
 
 }  // namespace rt
