@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <vector>
 
 #include "rt/ray.h"
 
@@ -36,6 +37,11 @@ struct Crossing {
     bool visible = true;
 };
 
+// Crossings along one ray in increasing t. CSG keeps one per thread as scratch space used
+// like a stack (each composite appends its operands' lists, merges them, and drops them), so
+// tracing allocates nothing once it has grown to the deepest composite.
+using Crossings = std::vector<Crossing>;
+
 // A primitive's parameters, owned here and seen only by the primitive's own source file.
 using ShapeData = std::shared_ptr<const void>;
 
@@ -56,6 +62,9 @@ using PropertyFn = bool(const void* shape);
 // The nearest crossing of a solid's boundary with range.t_min < t < range.t_max, including
 // crossings that are not visible. Returns false, leaving crossing alone, when there is none.
 using CrossFn = bool(const void* shape, const Ray& ray, Interval range, Crossing& crossing);
+// Appends every crossing of a solid's boundary with t > t_min, in increasing t, and returns
+// whether the point at t_min (just past it) is inside the solid.
+using CollectFn = bool(const void* shape, const Ray& ray, double t_min, Crossings& out);
 
 struct PrimitiveType {
     int id;
@@ -78,6 +87,12 @@ struct PrimitiveType {
     // True when the primitive carries its operands' surfaces, so no surface follows it in the
     // scene (CSG, or an affine of CSG). nullptr: always false.
     PropertyFn* carries_surfaces = nullptr;
+    // For composites (CSG) and frames around them: every crossing at once. nullptr (the usual
+    // case): the crossings are found one after another with cross.
+    CollectFn* collect = nullptr;
+    // A box containing the solid (its inside), where that is not the box of the surface: a
+    // quadric's solid is not clipped. nullptr: the same as bounds.
+    BoundsFn* solid_bounds = nullptr;
 };
 
 // A primitive type with its parameters: what the scene stores for each primitive.
@@ -108,10 +123,21 @@ struct Shape {
     bool inside(const Vec3& point) const { return type->inside(data.get(), point); }
     // The nearest crossing of the solid's boundary in range (only when has_inside()).
     bool cross(const Ray& ray, Interval range, Crossing& crossing) const;
+    // Every crossing beyond t_min, and whether the ray starts inside (only when has_inside()).
+    bool collect(const Ray& ray, double t_min, Crossings& out) const;
+    Bounds solid_bounds() const {
+        return type->solid_bounds != nullptr ? type->solid_bounds(data.get()) : bounds();
+    }
     bool carries_surfaces() const {
         return type->carries_surfaces != nullptr && type->carries_surfaces(data.get());
     }
 };
+
+// Crossings of one boundary are searched for again from just past the last one: by this much
+// relative to its distance, so that rounding in a frame's transform cannot find it twice.
+inline constexpr double kCrossingStep = 1e-12;
+// The smallest distance past t where the next crossing is looked for.
+double step_past(double t);
 
 // The whole table, sorted by ID.
 std::span<const PrimitiveType> primitive_types();

@@ -38,10 +38,20 @@ struct Bounds {
         min = component_min(min, p);
         max = component_max(max, p);
     }
+    // Empty when min > max on some axis (nothing lies in it).
+    constexpr bool empty() const { return min.x > max.x || min.y > max.y || min.z > max.z; }
     constexpr bool contains(const Vec3& p, double slack = 0) const {
         return p.x >= min.x - slack && p.x <= max.x + slack && p.y >= min.y - slack &&
                p.y <= max.y + slack && p.z >= min.z - slack && p.z <= max.z + slack;
     }
 };
+
+// The smallest box containing both, and the box both contain (empty when they are apart).
+constexpr Bounds merged(const Bounds& a, const Bounds& b) {
+    return {component_min(a.min, b.min), component_max(a.max, b.max)};
+}
+constexpr Bounds overlap(const Bounds& a, const Bounds& b) {
+    return {component_max(a.min, b.min), component_min(a.max, b.max)};
+}
 
 }  // namespace rt

@@ -56,17 +56,25 @@ bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
     return true;
 }
 
-bool cross(const void* shape, const Ray& ray, Interval range, Crossing& crossing) {
+bool collect(const void* shape, const Ray& ray, double t_min, Crossings& out) {
     const auto& a = *static_cast<const Affine*>(shape);
     const auto local = to_local(a, ray);
-    Crossing local_crossing;
-    if (!local || !a.inner.cross(local->ray, local->range(range), local_crossing)) return false;
-    // Going in or out is a property of the path, which the frame carries over unchanged.
-    const double t = local_crossing.hit.t / local->scale;
-    if (!range.contains(t)) return false;
-    crossing = local_crossing;
-    crossing.hit.t = t;
-    return true;
+    if (!local) return a.inner.inside(a.frame.to_local_point(ray.origin));
+    const std::size_t first = out.size();
+    bool started_inside = a.inner.collect(local->ray, t_min * local->scale, out);
+    // Going in or out is a property of the path, which the frame carries over unchanged; the
+    // distances scale back. One that rounds back to t_min or before is already behind.
+    std::size_t kept = first;
+    for (std::size_t i = first; i < out.size(); ++i) {
+        Crossing crossing = out[i];
+        crossing.hit.t /= local->scale;
+        if (crossing.hit.t > t_min)
+            out[kept++] = crossing;
+        else
+            started_inside = crossing.entering;
+    }
+    out.resize(kept);
+    return started_inside;
 }
 
 bool intersect_any(const void* shape, const Ray& ray, Interval range, Hit&) {
@@ -82,6 +90,11 @@ Vec3 normal(const void* shape, const Vec3& point, const Hit& hit) {
 }
 
 Bounds bounds(const void* shape) { return static_cast<const Affine*>(shape)->box; }
+
+Bounds solid_bounds(const void* shape) {
+    const auto& a = *static_cast<const Affine*>(shape);
+    return a.frame.to_world_bounds(a.inner.solid_bounds());
+}
 
 bool has_inside(const void* shape) { return static_cast<const Affine*>(shape)->inner.has_inside(); }
 

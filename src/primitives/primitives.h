@@ -56,8 +56,9 @@ NormalFn normal;
 BoundsFn bounds;
 InsideFn inside;
 PropertyFn has_inside;
-CrossFn cross;
 PropertyFn carries_surfaces;
+CollectFn collect;
+BoundsFn solid_bounds;
 }  // namespace rt::affine
 
 namespace rt::cone {
@@ -104,3 +105,16 @@ IntersectFn intersect_any;
 NormalFn normal;
 BoundsFn bounds;
 }  // namespace rt::mesh
+
+namespace rt::csg {
+ReadShapeFn read_union;
+ReadShapeFn read_intersection;
+ReadShapeFn read_difference;
+IntersectFn intersect;
+NormalFn normal;
+BoundsFn bounds;
+BoundsFn solid_bounds;
+InsideFn inside;
+PropertyFn carries_surfaces;
+CollectFn collect;
+}  // namespace rt::csg

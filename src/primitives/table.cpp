@@ -1,5 +1,7 @@
 // The table of primitive types. Adding a primitive is its source file, its declarations in
 // primitives.h and one row here. Columns left out of a row are nullptr (see primitive.h).
+#include <cmath>
+
 #include "id_table.h"
 #include "primitives/primitives.h"
 
@@ -28,7 +30,8 @@ constexpr std::array kPrimitiveTypes{
     PrimitiveType{.id = 7, .name = "affine", .read = affine::read, .intersect = affine::intersect,
                   .normal = affine::normal, .bounds = affine::bounds, .inside = affine::inside,
                   .has_inside = affine::has_inside, .intersect_any = affine::intersect_any,
-                  .cross = affine::cross, .carries_surfaces = affine::carries_surfaces},
+                  .carries_surfaces = affine::carries_surfaces, .collect = affine::collect,
+                  .solid_bounds = affine::solid_bounds},
     PrimitiveType{.id = 8, .name = "cone", .read = cone::read, .intersect = cone::intersect,
                   .normal = cone::normal, .bounds = cone::bounds},
     PrimitiveType{.id = 9, .name = "cylinder", .read = cylinder::read,
@@ -45,6 +48,20 @@ constexpr std::array kPrimitiveTypes{
     PrimitiveType{.id = 14, .name = "mesh", .read = mesh::read, .intersect = mesh::intersect,
                   .normal = mesh::normal, .bounds = mesh::bounds,
                   .intersect_any = mesh::intersect_any},
+    // Composites: their operands bring their own surfaces, and the boundary is found from
+    // the operands' crossings.
+    PrimitiveType{.id = 20, .name = "union", .read = csg::read_union, .intersect = csg::intersect,
+                  .normal = csg::normal, .bounds = csg::bounds, .inside = csg::inside,
+                  .carries_surfaces = csg::carries_surfaces, .collect = csg::collect,
+                  .solid_bounds = csg::solid_bounds},
+    PrimitiveType{.id = 21, .name = "intersection", .read = csg::read_intersection,
+                  .intersect = csg::intersect, .normal = csg::normal, .bounds = csg::bounds,
+                  .inside = csg::inside, .carries_surfaces = csg::carries_surfaces,
+                  .collect = csg::collect, .solid_bounds = csg::solid_bounds},
+    PrimitiveType{.id = 22, .name = "difference", .read = csg::read_difference,
+                  .intersect = csg::intersect, .normal = csg::normal, .bounds = csg::bounds,
+                  .inside = csg::inside, .carries_surfaces = csg::carries_surfaces,
+                  .collect = csg::collect, .solid_bounds = csg::solid_bounds},
 };
 
 static_assert(strictly_sorted_by_id(kPrimitiveTypes), "rows sorted by ID, each ID once");
@@ -64,6 +81,38 @@ bool Shape::cross(const Ray& ray, Interval range, Crossing& crossing) const {
     crossing.entering = dot(normal(ray.at(hit.t), hit), ray.direction) < 0;
     crossing.visible = true;
     return true;
+}
+
+namespace {
+// A simple solid's boundary meets a line a few times at most (a torus four); the cap only
+// guards against a crossing routine that fails to move on.
+constexpr int kMaxSimpleCrossings = 16;
+}  // namespace
+
+double step_past(double t) {
+    return std::max(std::nextafter(t, kInfinity), t + std::fabs(t) * kCrossingStep);
+}
+
+bool Shape::collect(const Ray& ray, double t_min, Crossings& out) const {
+    if (type->collect != nullptr) return type->collect(data.get(), ray, t_min, out);
+    // A simple solid: step from one crossing to the next.
+    Crossing crossing;
+    double from = t_min;
+    bool started_inside = false;
+    bool inside_now = false;
+    for (int i = 0; i < kMaxSimpleCrossings && cross(ray, {from, kInfinity}, crossing); ++i) {
+        if (i == 0) started_inside = inside_now = !crossing.entering;
+        // A crossing that does not change sides (a tangent touch) changes nothing.
+        if (crossing.entering != inside_now) {
+            out.push_back(crossing);
+            inside_now = crossing.entering;
+        }
+        from = step_past(crossing.hit.t);
+    }
+    if (from != t_min) return started_inside;
+    // No crossing at all: the whole ray is on one side, so ask at a point well along it,
+    // away from any surface the ray may start on.
+    return inside(ray.at(2 * t_min + 1));
 }
 
 }  // namespace rt
