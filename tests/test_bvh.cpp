@@ -193,6 +193,11 @@ class SceneWriter {
         std::string previous;
         for (int i = 0; i < objects; ++i) {
             // Now and then the same object again: a tie the file order must break.
+            if (random_.uniform() < 0.08) {
+                composite(0);  // its operands carry their surfaces
+                text_ << '\n';
+                continue;
+            }
             if (previous.empty() || random_.uniform() >= 0.05) previous = primitive_text();
             text_ << previous << ' ' << surface() << '\n';
         }
@@ -254,11 +259,45 @@ class SceneWriter {
         return one.str();
     }
 
+    // A union, intersection or difference of two solids (nested now and then), each
+    // operand with its own surface.
+    void composite(int nesting) {
+        text_ << 20 + random_.next() % 3;
+        for (int operand = 0; operand < 2; ++operand) {
+            text_ << "  ";
+            if (nesting < 2 && random_.uniform() < 0.25) {
+                composite(nesting + 1);
+                continue;
+            }
+            if (random_.uniform() < 0.25) {
+                affine_frame();
+                text_ << ' ';
+            }
+            // A sphere, a torus or a box.
+            constexpr std::uint64_t kSolids[] = {0, 7, 9};
+            primitive_of_kind(kSolids[random_.next() % 3], nesting);
+            text_ << ' ' << surface();
+        }
+    }
+
+    void affine_frame() {
+        text_ << "7";
+        point(10);
+        const Frame f = frame_around(random_.unit_vector());
+        vec(f.e1 * random_.uniform(0.5, 1.5));
+        vec(f.e2 * random_.uniform(0.5, 1.5) + f.e1 * random_.uniform(-0.3, 0.3));
+        vec(f.e3 * random_.uniform(0.5, 1.5));
+    }
+
     // One primitive (ID and numbers, no surface) around a random place.
     void primitive(int nesting) {
-        const double h = 10;  // objects lie in [-h, h]^3
         const int kinds = nesting < 2 ? 13 : 12;
-        switch (random_.next() % static_cast<std::uint64_t>(kinds)) {
+        primitive_of_kind(random_.next() % static_cast<std::uint64_t>(kinds), nesting);
+    }
+
+    void primitive_of_kind(std::uint64_t kind, int nesting) {
+        const double h = 10;  // objects lie in [-h, h]^3
+        switch (kind) {
             case 0:
                 text_ << "1 " << random_.uniform(0.2, 1.5);
                 point(h);
@@ -358,12 +397,7 @@ class SceneWriter {
                 break;
             }
             default: {  // an affine around any of the above, or around another affine
-                text_ << "7";
-                point(h);
-                const Frame f = frame_around(random_.unit_vector());
-                vec(f.e1 * random_.uniform(0.5, 1.5));
-                vec(f.e2 * random_.uniform(0.5, 1.5) + f.e1 * random_.uniform(-0.3, 0.3));
-                vec(f.e3 * random_.uniform(0.5, 1.5));
+                affine_frame();
                 text_ << ' ';
                 primitive(nesting + 1);
                 break;
