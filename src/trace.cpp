@@ -139,16 +139,27 @@ Spectrum Tracer::shade_primary(const Ray& ray) const {
     return trace(ray);
 }
 
-Spectrum Tracer::pixel(int x, int y) const {
+Spectrum Tracer::pixel(int x, int y, const Spectrum* traced_centre) const {
     const int n = options_.samples;
-    if (n <= 1) return shade_primary(scene_.viewer.primary_ray(x, y));
-    // Samples on a regular n x n grid from the pixel's corner, so that one sample per pixel
-    // is exactly the original's ray.
+    if (n <= 1)
+        return traced_centre != nullptr ? *traced_centre
+                                        : shade_primary(scene_.viewer.primary_ray(x, y));
+    // An n x n grid centred on the original's ray (offsets (k + 1/2)/n - 1/2), so that every n
+    // renders the same geometry. For odd n the middle offset is exactly 0: that sample is the
+    // original's ray itself, and a value already traced for it can stand in, bit for bit.
+    const int middle = n % 2 == 1 ? n / 2 : -1;
     Spectrum sum(0.0);
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i)
-            sum += shade_primary(scene_.viewer.primary_ray(x + static_cast<double>(i) / n,
-                                                           y + static_cast<double>(j) / n));
+    for (int j = 0; j < n; ++j) {
+        const double v = (j + 0.5) / n - 0.5;
+        for (int i = 0; i < n; ++i) {
+            if (traced_centre != nullptr && i == middle && j == middle) {
+                sum += *traced_centre;
+                continue;
+            }
+            const double u = (i + 0.5) / n - 0.5;
+            sum += shade_primary(scene_.viewer.primary_ray(x + u, y + v));
+        }
+    }
     return sum * (1.0 / (n * n));
 }
 

@@ -58,8 +58,10 @@ class Tracer {
     Spectrum trace(const Ray& ray, int depth = 0, double weight = 1, double ior = 1) const;
     // A primary ray's value in the current render mode.
     Spectrum shade_primary(const Ray& ray) const;
-    // The value of pixel (x, y), averaging options.samples^2 primary rays.
-    Spectrum pixel(int x, int y) const;
+    // The value of pixel (x, y): the mean of options.samples^2 primary rays on a grid centred
+    // on the original's ray through (x, y). traced_centre, when given, is the value of that
+    // ray, already traced; it is used instead of tracing the ray again.
+    Spectrum pixel(int x, int y, const Spectrum* traced_centre = nullptr) const;
 
     std::optional<SceneHit> closest_hit(const Ray& ray) const;
     // True when any object lies along the ray closer than `distance`.
