@@ -62,6 +62,8 @@ class Tracer {
     // on the original's ray through (x, y). traced_centre, when given, is the value of that
     // ray, already traced; it is used instead of tracing the ray again.
     Spectrum pixel(int x, int y, const Spectrum* traced_centre = nullptr) const;
+    // The value of the original's one ray through pixel (x, y), whatever options.samples is.
+    Spectrum one_ray(int x, int y) const { return shade_primary(scene_.viewer.primary_ray(x, y)); }
 
     std::optional<SceneHit> closest_hit(const Ray& ray) const;
     // True when any object lies along the ray closer than `distance`.
@@ -89,8 +91,12 @@ class Tracer {
 int worker_threads(int requested);
 
 // Renders every pixel of the scene's viewer. Rows are shared among threads, and each pixel
-// depends on nothing else, so the result is the same whatever the number of threads. When
-// stats is given, the counts of every thread are added into it.
+// depends on nothing else, so the result is the same whatever the number of threads. With
+// options.adaptive_threshold, every pixel is first traced with the original's one ray, and
+// only the pixels that differ from a 4-connected neighbour by more than the threshold (in some
+// component, both clamped to [0, 1]) are replaced by their options.samples^2 grid: exactly the
+// value Tracer::pixel gives them. When stats is given, the counts of every thread are added
+// into it.
 Raster render(const Scene& scene, const RenderOptions& options, RenderStats* stats = nullptr);
 
 }  // namespace rt
