@@ -59,8 +59,9 @@ class Tracer {
     // A primary ray's value in the current render mode.
     Spectrum shade_primary(const Ray& ray) const;
     // The value of pixel (x, y): the mean of options.samples^2 primary rays on a grid centred
-    // on the original's ray through (x, y). traced_centre, when given, is the value of that
-    // ray, already traced; it is used instead of tracing the ray again.
+    // on the original's ray through (x, y). traced_centre, when given, is that ray's value,
+    // already traced: an odd grid, whose middle sample is that ray, uses it instead of
+    // tracing the ray again (the sum is the same, bit for bit).
     Spectrum pixel(int x, int y, const Spectrum* traced_centre = nullptr) const;
     // The value of the original's one ray through pixel (x, y), whatever options.samples is.
     Spectrum one_ray(int x, int y) const { return shade_primary(scene_.viewer.primary_ray(x, y)); }
