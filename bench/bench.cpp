@@ -1,6 +1,9 @@
 // Times rt's stages on each scene file: reading, building the object hierarchy, rendering
 // (the median of --repeat renders), the rays traced per second, and the peak memory.
-//   rt_bench [--threads N] [--depth N] [--repeat N] [--linear] scene.in ...
+//   rt_bench [--threads N] [--depth N] [--samples N] [--adaptive T] [--repeat N] [--linear]
+//            scene.in ...
+// --samples and --adaptive are rt's -s and -a (--adaptive without --samples takes 3 x 3, as
+// rt does); the ray columns then show what supersampling cost.
 // --linear renders with the hierarchy turned off (every ray tests every object).
 // Peak memory is the process's peak so far (getrusage's ru_maxrss), so it is the figure of
 // one scene only when rt_bench is given one scene; bench/run runs it once per scene.
@@ -92,8 +95,8 @@ void print_row(const std::string& name, const Figures& f) {
 }
 
 int usage() {
-    std::cerr << "usage: rt_bench [--threads N] [--depth N] [--repeat N] [--linear] "
-                 "scene.in ...\n";
+    std::cerr << "usage: rt_bench [--threads N] [--depth N] [--samples N] [--adaptive T] "
+                 "[--repeat N] [--linear] scene.in ...\n";
     return 2;
 }
 
@@ -102,6 +105,7 @@ int usage() {
 int main(int argc, char** argv) {
     rt::RenderOptions options;  // rt's defaults: depth 7, weight cut-off 0.01
     int repeat = 1;
+    bool have_samples = false;
     std::vector<std::string> files;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
@@ -110,6 +114,11 @@ int main(int argc, char** argv) {
             options.threads = std::max(0, std::atoi(argv[++i]));
         } else if (arg == "--depth" && has_value) {
             options.max_depth = std::max(0, std::atoi(argv[++i]));
+        } else if (arg == "--samples" && has_value) {
+            options.samples = std::clamp(std::atoi(argv[++i]), 1, 64);
+            have_samples = true;
+        } else if (arg == "--adaptive" && has_value) {
+            options.adaptive_threshold = std::max(0.0, std::atof(argv[++i]));
         } else if (arg == "--repeat" && has_value) {
             repeat = std::max(1, std::atoi(argv[++i]));
         } else if (arg == "--linear") {
@@ -121,6 +130,7 @@ int main(int argc, char** argv) {
         }
     }
     if (files.empty()) return usage();
+    if (options.adaptive_threshold && !have_samples) options.samples = rt::kDefaultAdaptiveSamples;
     print_header();
     int status = 0;
     for (const std::string& file : files) {

@@ -58,7 +58,12 @@ options:
                       (default 7; 0 traces no secondary rays)
   -w, --weight W      do not trace rays whose weight is below W (default 0.01)
   -m, --mode MODE     trace (default), depth, colour (or color), normal
-  -s, --samples N     N x N samples per pixel (default 1)
+  -s, --samples N     N x N samples per pixel on a grid centred on the
+                      pixel's one ray (default 1)
+  -a, --adaptive T    adaptive supersampling: one ray per pixel, and N x N
+                      (-s N, default 3) only where a pixel differs from a
+                      neighbour by more than T in some colour component
+                      (compared clamped to [0, 1])
   -j, --threads N     worker threads (default: one per hardware thread);
                       the image is the same whatever N is
   -r, --read-only     read and check the scene, print a summary, render nothing
@@ -80,6 +85,7 @@ exit status: 0 success, 1 scene or input/output error, 2 usage error
 CommandLine parse_command_line(const std::vector<std::string>& args) {
     CommandLine cl;
     bool have_input = false;
+    bool have_samples = false;
     for (std::size_t i = 0; i < args.size(); ++i) {
         std::string arg = args[i];
         std::string value;
@@ -92,7 +98,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
                 has_inline_value = true;
             }
         } else if (arg.size() > 2 && arg[0] == '-' &&
-                   std::string_view("dwmsjo").find(arg[1]) != std::string_view::npos) {
+                   std::string_view("dwmsajo").find(arg[1]) != std::string_view::npos) {
             value = arg.substr(2);
             arg.resize(2);
             has_inline_value = true;
@@ -122,6 +128,9 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
             r.mode = parse_mode(take_value());
         } else if (arg == "-s" || arg == "--samples") {
             r.samples = parse_int("-s", take_value(), 1, kMaxSamplesOption);
+            have_samples = true;
+        } else if (arg == "-a" || arg == "--adaptive") {
+            r.adaptive_threshold = parse_double("-a", take_value());
         } else if (arg == "-j" || arg == "--threads") {
             r.threads = parse_int("-j", take_value(), 1, kMaxThreadsOption);
         } else if (arg == "-r" || arg == "--read-only") {
@@ -154,6 +163,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
             have_input = true;
         }
     }
+    if (cl.render.adaptive_threshold && !have_samples) cl.render.samples = kDefaultAdaptiveSamples;
     return cl;
 }
 

@@ -139,16 +139,25 @@ Spectrum Tracer::shade_primary(const Ray& ray) const {
     return trace(ray);
 }
 
-Spectrum Tracer::pixel(int x, int y) const {
+Spectrum Tracer::pixel(int x, int y, const Spectrum* traced_centre) const {
     const int n = options_.samples;
-    if (n <= 1) return shade_primary(scene_.viewer.primary_ray(x, y));
-    // Samples on a regular n x n grid from the pixel's corner, so that one sample per pixel
-    // is exactly the original's ray.
+    if (n <= 1) return traced_centre != nullptr ? *traced_centre : one_ray(x, y);
+    // An n x n grid centred on the original's ray (offsets (k + 1/2)/n - 1/2), so that every n
+    // renders the same geometry. For odd n the middle offset is exactly 0: that sample is the
+    // original's ray itself, and a value already traced for it can stand in, bit for bit.
+    const int middle = n % 2 == 1 ? n / 2 : -1;
     Spectrum sum(0.0);
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i)
-            sum += shade_primary(scene_.viewer.primary_ray(x + static_cast<double>(i) / n,
-                                                           y + static_cast<double>(j) / n));
+    for (int j = 0; j < n; ++j) {
+        const double v = (j + 0.5) / n - 0.5;
+        for (int i = 0; i < n; ++i) {
+            if (traced_centre != nullptr && i == middle && j == middle) {
+                sum += *traced_centre;
+                continue;
+            }
+            const double u = (i + 0.5) / n - 0.5;
+            sum += shade_primary(scene_.viewer.primary_ray(x + u, y + v));
+        }
+    }
     return sum * (1.0 / (n * n));
 }
 
@@ -157,23 +166,101 @@ int worker_threads(int requested) {
     return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 }
 
+namespace {
+
+// A rectangle of pixels: columns [x0, x1), rows [y0, y1).
+struct PixelRect {
+    int x0, y0, x1, y1;
+
+    int width() const { return x1 - x0; }
+    // This rectangle grown by one pixel on every side, but kept within `bounds`.
+    PixelRect with_margin(const PixelRect& bounds) const {
+        return {std::max(x0 - 1, bounds.x0), std::max(y0 - 1, bounds.y0),
+                std::min(x1 + 1, bounds.x1), std::min(y1 + 1, bounds.y1)};
+    }
+};
+
+// Calls work(tracer, y) for every row y of `rect`, rows shared among the tracers' threads
+// (one thread per tracer); returns once every row is done.
+template <typename Work>
+void for_each_row(const std::vector<Tracer>& tracers, const PixelRect& rect, const Work& work) {
+    std::atomic<int> next_row{rect.y0};
+    auto worker = [&](const Tracer& tracer) {
+        for (int y = next_row++; y < rect.y1; y = next_row++) work(tracer, y);
+    };
+    std::vector<std::jthread> pool;
+    for (std::size_t i = 1; i < tracers.size(); ++i)
+        pool.emplace_back(worker, std::cref(tracers[i]));
+    worker(tracers[0]);
+}  // every worker joins here
+
+// Whether one-ray values a and b differ by more than `threshold` in some component, compared
+// as the image will be written: clamped to [0, 1].
+bool differ(const Spectrum& a, const Spectrum& b, double threshold) {
+    for (std::size_t i = 0; i < kSpectrumComponents; ++i)
+        if (std::fabs(std::clamp(a[i], 0.0, 1.0) - std::clamp(b[i], 0.0, 1.0)) > threshold)
+            return true;
+    return false;
+}
+
+// Whether pixel (x, y) differs from one of its 4-connected neighbours within `known`, the
+// pixels whose one-ray values `one_ray` holds.
+bool needs_supersampling(const Raster& one_ray, const PixelRect& known, int x, int y,
+                         double threshold) {
+    const Spectrum here = one_ray.at(x, y);
+    return (x > known.x0 && differ(here, one_ray.at(x - 1, y), threshold)) ||
+           (x + 1 < known.x1 && differ(here, one_ray.at(x + 1, y), threshold)) ||
+           (y > known.y0 && differ(here, one_ray.at(x, y - 1), threshold)) ||
+           (y + 1 < known.y1 && differ(here, one_ray.at(x, y + 1), threshold));
+}
+
+// Adaptive supersampling of `rect` into `raster`. The decisions are taken from one-ray values
+// only, never from what a thread has seen, so the image is the same on any number of threads.
+// They need the one-ray values of a one-pixel margin around `rect` (within the image): a
+// region of the image (a later issue) rendered this way decides at its edges exactly as the
+// whole image does.
+void render_adaptive(const std::vector<Tracer>& tracers, const PixelRect& rect,
+                     const PixelRect& image, double threshold, Raster& raster) {
+    const PixelRect known = rect.with_margin(image);
+    for_each_row(tracers, known, [&](const Tracer& tracer, int y) {
+        for (int x = known.x0; x < known.x1; ++x) raster.set(x, y, tracer.one_ray(x, y));
+    });
+    // Decided for the whole rectangle before any pixel is overwritten by its grid's mean. Bytes,
+    // not vector<bool>: threads write neighbouring flags.
+    std::vector<unsigned char> supersample(static_cast<std::size_t>(rect.width()) *
+                                           (rect.y1 - rect.y0));
+    const auto flag = [&](int x, int y) -> unsigned char& {
+        return supersample[static_cast<std::size_t>(y - rect.y0) * rect.width() + (x - rect.x0)];
+    };
+    for_each_row(tracers, rect, [&](const Tracer&, int y) {
+        for (int x = rect.x0; x < rect.x1; ++x)
+            flag(x, y) = needs_supersampling(raster, known, x, y, threshold) ? 1 : 0;
+    });
+    for_each_row(tracers, rect, [&](const Tracer& tracer, int y) {
+        for (int x = rect.x0; x < rect.x1; ++x) {
+            if (flag(x, y) == 0) continue;
+            const Spectrum centre = raster.at(x, y);
+            raster.set(x, y, tracer.pixel(x, y, &centre));
+        }
+    });
+}
+
+}  // namespace
+
 Raster render(const Scene& scene, const RenderOptions& options, RenderStats* stats) {
     const Viewer& v = scene.viewer;
     Raster raster(v.xres, v.yres);
+    const PixelRect image{0, 0, v.xres, v.yres};
     const int threads = std::clamp(worker_threads(options.threads), 1, v.yres);
     // One tracer per thread, each counting its own rays; merged once all have joined.
-    std::vector<Tracer> tracers(static_cast<std::size_t>(threads), Tracer(scene, options));
-    std::atomic<int> next_row{0};
-    auto work = [&](const Tracer& tracer) {
-        for (int y = next_row++; y < v.yres; y = next_row++)
+    const std::vector<Tracer> tracers(static_cast<std::size_t>(threads), Tracer(scene, options));
+    if (options.adaptive_threshold) {
+        render_adaptive(tracers, image, image, *options.adaptive_threshold, raster);
+    } else {
+        for_each_row(tracers, image, [&](const Tracer& tracer, int y) {
             for (int x = 0; x < v.xres; ++x) raster.set(x, y, tracer.pixel(x, y));
-    };
-    {
-        std::vector<std::jthread> pool;
-        for (std::size_t i = 1; i < tracers.size(); ++i)
-            pool.emplace_back(work, std::cref(tracers[i]));
-        work(tracers[0]);
-    }  // every worker has joined here
+        });
+    }
     if (stats != nullptr)
         for (const Tracer& tracer : tracers) *stats += tracer.stats();
     return raster;

@@ -122,7 +122,10 @@ TEST(usage_errors_exit_2) {
                                "-d abc scene.in", "-d -1 scene.in",
                                "-w x scene.in",   "-m fancy scene.in",
                                "a.in b.in",       "--no-shadows=1 scene.in",
-                               "-s 0 scene.in",   "-j 0 scene.in"};
+                               "-s 0 scene.in",   "-j 0 scene.in",
+                               "-a -1 scene.in",  "-a x scene.in",
+                               "-a inf scene.in", "-a nan scene.in",
+                               "scene.in -a",     "--adaptive=0.1x scene.in"};
     for (const std::string& args : bad) {
         write_file(dir / "out.ppm", kKeep);
         const RunResult r = run_rt(dir, args + " -o out.ppm");
@@ -139,6 +142,7 @@ TEST(help_and_version) {
     CHECK_EQ(r.status, 0);
     CHECK_CONTAINS(r.out, "usage: rt [options] [scene]");
     CHECK_CONTAINS(r.out, "--no-refraction");
+    CHECK_CONTAINS(r.out, "-a, --adaptive T");
     r = run_rt(dir, "--version");
     CHECK_EQ(r.status, 0);
     CHECK_CONTAINS(r.out, "rt " RT_VERSION);
@@ -176,4 +180,32 @@ TEST(no_bvh_renders_the_same_bytes) {
     CHECK(rt::parse_command_line({}).render.accelerate);
     CHECK(!rt::parse_command_line({"--no-bvh"}).render.accelerate);
     CHECK_EQ(run_rt(dir, "--no-bvh=1 scene.in").status, 2);
+}
+
+TEST(adaptive_option) {
+    CHECK(!rt::parse_command_line({}).render.adaptive_threshold);
+    rt::CommandLine cl = rt::parse_command_line({"-a", "0.1"});
+    CHECK(cl.render.adaptive_threshold == 0.1);
+    CHECK_EQ(cl.render.samples, 3);  // the grid -a uses when -s is not given
+    cl = rt::parse_command_line({"-s", "5", "--adaptive=0"});
+    CHECK(cl.render.adaptive_threshold == 0.0);
+    CHECK_EQ(cl.render.samples, 5);
+    cl = rt::parse_command_line({"-a0.25", "-s2"});  // -s after -a counts too
+    CHECK(cl.render.adaptive_threshold == 0.25);
+    CHECK_EQ(cl.render.samples, 2);
+    CHECK_EQ(rt::parse_command_line({"-s", "2"}).render.samples, 2);
+
+    const fs::path dir = work_dir("adaptive");
+    write_file(dir / "scene.in", kScene);
+    RunResult r = run_rt(dir, "-a -1 scene.in");
+    CHECK_CONTAINS(r.err, "rt: -a expects a number >= 0, got '-1'");
+    // A threshold no difference exceeds renders the one-ray image; any threshold renders the
+    // same bytes on any number of threads.
+    CHECK_EQ(run_rt(dir, "scene.in -o one.ppm").status, 0);
+    CHECK_EQ(run_rt(dir, "-a 1 scene.in -o above.ppm").status, 0);
+    CHECK(read_file(dir / "one.ppm") == read_file(dir / "above.ppm"));
+    CHECK_EQ(run_rt(dir, "-a 0.05 -j 1 scene.in -o j1.ppm").status, 0);
+    CHECK_EQ(run_rt(dir, "-a 0.05 -j 3 scene.in -o j3.ppm").status, 0);
+    CHECK(read_file(dir / "j1.ppm") == read_file(dir / "j3.ppm"));
+    CHECK(read_file(dir / "j1.ppm") != read_file(dir / "one.ppm"));
 }

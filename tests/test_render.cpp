@@ -283,18 +283,67 @@ TEST(render_is_the_same_on_any_number_of_threads) {
     }
 }
 
-TEST(supersampling_averages_a_grid_from_the_corner) {
-    const Scene s = parse_scene(kViewer2x2 + kSphere + "104 0 0 10  1 1 1\n");
+TEST(supersampling_averages_a_grid_centred_on_the_original_ray) {
+    // Colour mode, pixel (1, 1): sample (u, v) looks through (u, -v, 4), so it meets the plane
+    // z = 0 at (5u, -5v, 0). A red strip covers x >= 1 and a green square |x|, |y| <= 0.5.
+    // On the centred 3 x 3 grid (u, v in {-1/3, 0, 1/3}) the column u = 1/3 is red and only
+    // the middle sample, the original's ray, is green: (3/9, 1/9, 0). A grid from the corner
+    // (u, v in {0, 1/3, 2/3}) would give (6/9, 1/9, 0).
+    const Scene s = parse_scene(kViewer2x2 + "6  1 -10 0  9 0 0  0 20 0  100 1 0 0 0 1 1 0 1\n" +
+                                "6  -0.5 -0.5 0  1 0 0  0 1 0  100 0 1 0 0 1 1 0 1\n");
     RenderOptions options;
-    options.mode = RenderMode::depth;
-    options.samples = 2;
-    const Tracer tracer(s, options);
-    RenderOptions single = options;
-    single.samples = 1;
-    const Tracer reference(s, single);
-    Spectrum sum(0.0);
-    for (double dy : {0.0, 0.5})
-        for (double dx : {0.0, 0.5})
-            sum += reference.shade_primary(s.viewer.primary_ray(1 + dx, 1 + dy));
-    CHECK_NEAR(tracer.pixel(1, 1), sum * 0.25, 1e-15);
+    options.mode = RenderMode::colour;
+    options.samples = 3;
+    CHECK_NEAR(Tracer(s, options).pixel(1, 1), Spectrum(3.0 / 9, 1.0 / 9, 0), 1e-15);
+    options.samples = 1;  // one sample is the original's ray itself
+    CHECK_NEAR(Tracer(s, options).pixel(1, 1), Spectrum(0, 1, 0), 0);
+}
+
+TEST(supersampling_sums_the_expected_rays) {
+    // A narrow view, so that the sphere's edge crosses pixel (0, 1).
+    const Scene s =
+        parse_scene("102  0 0 5  0 0 0  0.3 0 0  0 0.3 0  2 2\n" + kSphere + "104 0 0 10  1 1 1\n");
+    for (int n : {1, 2, 3, 4}) {
+        RenderOptions options;
+        options.samples = n;
+        const Tracer tracer(s, options);
+        options.samples = 1;
+        const Tracer reference(s, options);
+        Spectrum sum(0.0);
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i)
+                sum += reference.shade_primary(
+                    s.viewer.primary_ray(0 + (i + 0.5) / n - 0.5, 1 + (j + 0.5) / n - 0.5));
+        CHECK_NEAR(tracer.pixel(0, 1), sum * (1.0 / (n * n)), 1e-15);
+        // A centre value already traced replaces the middle sample without changing the sum.
+        const Spectrum centre = reference.shade_primary(s.viewer.primary_ray(0, 1));
+        CHECK(tracer.pixel(0, 1, &centre) == tracer.pixel(0, 1));
+    }
+}
+
+TEST(supersampling_does_not_move_the_image) {
+    // A small white disk facing the eye, off the axis, on black, in colour mode. Its image is a
+    // circle of radius 3.3 pixels centred on raster point (24, 22) (alpha = 2/10, beta = -1/10),
+    // and every centred grid samples it symmetrically about that point, so the centroid stays
+    // there whatever the number of samples. A grid from the pixel corner moved it by
+    // (n - 1) / 2n pixel: 1/4 for n = 2, 1/3 for n = 3.
+    const Scene s = parse_scene(
+        "102  0 0 10  0 0 0  1 0 0  0 1 0  40 40\n"
+        "3  2 -1 0  0 0 1  1.65  100 1 1 1 0 1 1 0 1\n");
+    const auto centroid = [&](int n) {
+        RenderOptions options;
+        options.mode = RenderMode::colour;
+        options.samples = n;
+        const Raster image = render(s, options);
+        double sum = 0, sx = 0, sy = 0;
+        for (int y = 0; y < image.height(); ++y)
+            for (int x = 0; x < image.width(); ++x) {
+                const double w = image.at(x, y)[0];
+                sum += w;
+                sx += w * x;
+                sy += w * y;
+            }
+        return Vec3(sx / sum, sy / sum, 0);
+    };
+    for (int n : {1, 2, 3, 4}) CHECK_NEAR(centroid(n), Vec3(24, 22, 0), 1e-9);
 }

@@ -1,7 +1,12 @@
 // What the command line controls about a render.
 #pragma once
 
+#include <optional>
+
 namespace rt {
+
+// The grid size -a uses when -s is not given: 3 x 3, as POV-Ray's +A users expect.
+inline constexpr int kDefaultAdaptiveSamples = 3;
 
 enum class RenderMode { trace, depth, colour, normal };
 
@@ -10,6 +15,9 @@ struct RenderOptions {
     double min_weight = 0.01;  // -w: nor are rays whose weight falls below this
     RenderMode mode = RenderMode::trace;
     int samples = 1;  // -s: samples per pixel along each axis (supersampling)
+    // -a: when set, pixels get one ray each, and only those that differ from a neighbour by
+    // more than this (clamped, in any component) get the samples x samples grid.
+    std::optional<double> adaptive_threshold;
     int threads = 0;  // -j: worker threads; 0 means one per hardware thread
     // --no-bvh turns this off: every ray is tested against every object in file order. The
     // image is the same either way; the linear scan is the oracle the hierarchy is tested by.

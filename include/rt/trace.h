@@ -58,8 +58,13 @@ class Tracer {
     Spectrum trace(const Ray& ray, int depth = 0, double weight = 1, double ior = 1) const;
     // A primary ray's value in the current render mode.
     Spectrum shade_primary(const Ray& ray) const;
-    // The value of pixel (x, y), averaging options.samples^2 primary rays.
-    Spectrum pixel(int x, int y) const;
+    // The value of pixel (x, y): the mean of options.samples^2 primary rays on a grid centred
+    // on the original's ray through (x, y). traced_centre, when given, is that ray's value,
+    // already traced: an odd grid, whose middle sample is that ray, uses it instead of
+    // tracing the ray again (the sum is the same, bit for bit).
+    Spectrum pixel(int x, int y, const Spectrum* traced_centre = nullptr) const;
+    // The value of the original's one ray through pixel (x, y), whatever options.samples is.
+    Spectrum one_ray(int x, int y) const { return shade_primary(scene_.viewer.primary_ray(x, y)); }
 
     std::optional<SceneHit> closest_hit(const Ray& ray) const;
     // True when any object lies along the ray closer than `distance`.
@@ -87,8 +92,12 @@ class Tracer {
 int worker_threads(int requested);
 
 // Renders every pixel of the scene's viewer. Rows are shared among threads, and each pixel
-// depends on nothing else, so the result is the same whatever the number of threads. When
-// stats is given, the counts of every thread are added into it.
+// depends on nothing else, so the result is the same whatever the number of threads. With
+// options.adaptive_threshold, every pixel is first traced with the original's one ray, and
+// only the pixels that differ from a 4-connected neighbour by more than the threshold (in some
+// component, both clamped to [0, 1]) are replaced by their options.samples^2 grid: exactly the
+// value Tracer::pixel gives them. When stats is given, the counts of every thread are added
+// into it.
 Raster render(const Scene& scene, const RenderOptions& options, RenderStats* stats = nullptr);
 
 }  // namespace rt
