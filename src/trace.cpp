@@ -23,6 +23,59 @@ std::optional<Vec3> refract(const Vec3& incoming, const Vec3& normal, double eta
     return normalized(eta * incoming + (eta * cos_i - std::sqrt(k)) * normal);
 }
 
+double fresnel_reflectance(double cos_i, double n1, double n2) {
+    cos_i = std::clamp(cos_i, 0.0, 1.0);
+    const double eta = n1 / n2;
+    const double sin2_t = eta * eta * (1 - cos_i * cos_i);  // Snell's law, squared
+    if (sin2_t >= 1) return 1;                              // total internal reflection
+    const double cos_t = std::sqrt(1 - sin2_t);
+    const double s = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
+    const double p = (n1 * cos_t - n2 * cos_i) / (n1 * cos_t + n2 * cos_i);
+    return (s * s + p * p) / 2;
+}
+
+namespace {
+
+// How a surface shares out the light it does not scatter: the weights of the highlight, of
+// the reflected ray and of the refracted ray, and the refracted direction (none on total
+// internal reflection, or where nothing is transmitted).
+struct Split {
+    double highlight;
+    double mirror;
+    double transmit;
+    std::optional<Vec3> refracted;
+};
+
+// For a ray going from index n1 into n2 through a surface whose normal faces it.
+Split split_light(const Material& m, const Vec3& incoming, const Vec3& facing, double n1, double n2,
+                  bool refraction) {
+    Split split{m.ks, m.ks, m.kt, std::nullopt};
+    if (m.fresnel) {
+        // A dielectric (114): F reflected, 1 - F transmitted; the highlight keeps ks. F is
+        // needed for the mirror even when refraction is switched off.
+        split.refracted = refract(incoming, facing, n1 / n2);
+        split.mirror = split.refracted ? fresnel_reflectance(-dot(incoming, facing), n1, n2) : 1.0;
+        split.transmit = 1 - split.mirror;
+    } else if (m.kt > 0 && refraction) {
+        split.refracted = refract(incoming, facing, n1 / n2);
+        // On total internal reflection kt joins ks, for the highlight and the mirror alike.
+        if (!split.refracted) {
+            split.highlight += m.kt;
+            split.mirror += m.kt;
+        }
+    }
+    return split;
+}
+
+// The fraction of light left after travelling t through a medium of this absorption.
+Spectrum transmittance(const Spectrum& absorption, double t) {
+    Spectrum left;
+    for (std::size_t i = 0; i < kSpectrumComponents; ++i) left[i] = std::exp(-absorption[i] * t);
+    return left;
+}
+
+}  // namespace
+
 Tracer::Tracer(const Scene& scene, const RenderOptions& options)
     : scene_(scene), options_(options), last_blockers_(scene.lights.size()) {
     if (options_.accelerate && !scene_.index.covers(scene_.objects.size()))
@@ -83,7 +136,8 @@ Spectrum Tracer::direct_light(const Vec3& point, const Vec3& facing_normal, cons
     return total;
 }
 
-Spectrum Tracer::trace(const Ray& ray, int depth, double weight, double ior) const {
+Spectrum Tracer::trace(const Ray& ray, int depth, double weight, double ior,
+                       const Spectrum& absorption) const {
     ++(depth == 0 ? stats_.primary_rays : stats_.secondary_rays);
     const auto found = closest_hit(ray);
     // A ray that escapes brings back the ambient intensity.
@@ -95,26 +149,27 @@ Spectrum Tracer::trace(const Ray& ray, int depth, double weight, double ior) con
     const bool leaving = dot(ray.direction, outward) > 0;
     const Vec3 facing = leaving ? -outward : outward;  // d in the Phong model
     const Material m = object.surface_at(found->hit).at(point);
-    double ks = m.ks;
     Spectrum result(0.0);
 
-    // Transmission comes first: on total internal reflection kt joins the reflection weight.
-    if (m.kt > 0 && options_.refraction) {
-        const double next_ior = leaving ? 1.0 : m.ior;
-        if (const auto refracted = refract(ray.direction, facing, ior / next_ior)) {
-            if (may_trace(depth + 1, weight * m.kt))
-                result += m.kt * trace({point, *refracted}, depth + 1, weight * m.kt, next_ior);
-        } else {
-            ks += m.kt;
-        }
-    }
+    // Transmission comes first: on total internal reflection its weight joins the mirror's.
+    // The refracted ray enters the medium behind the surface, or leaving returns to air.
+    const double next_ior = leaving ? 1.0 : m.ior;
+    const Split split = split_light(m, ray.direction, facing, ior, next_ior, options_.refraction);
+    const double kt = split.transmit;
+    if (split.refracted && kt > 0 && options_.refraction && may_trace(depth + 1, weight * kt))
+        result += kt * trace({point, *split.refracted}, depth + 1, weight * kt, next_ior,
+                             leaving ? Spectrum(0.0) : m.absorption);
 
     if (options_.ambient) result += scene_.ambient * m.colour * m.kd;
     const Vec3 reflected = reflect(ray.direction, facing);
     if (options_.diffuse || options_.specular)
-        result += direct_light(point, facing, reflected, m, ks);
+        result += direct_light(point, facing, reflected, m, split.highlight);
+    // The reflected ray stays in the medium it came through.
+    const double ks = split.mirror;
     if (ks > 0 && options_.reflection && may_trace(depth + 1, weight * ks))
-        result += ks * trace({point, reflected}, depth + 1, weight * ks, ior);
+        result += ks * trace({point, reflected}, depth + 1, weight * ks, ior, absorption);
+    // Light from this hit crossed the medium for found->hit.t on its way back.
+    if (!absorption.is_black()) result *= transmittance(absorption, found->hit.t);
     return result;
 }
 

@@ -56,7 +56,8 @@ inline std::vector<ErrorCase> scene_error_cases() {
         {kViewer + "1 1 0 0 0 106",
          "test.in:2:11: 106 (use default surface) but no default surface has been set with 105"},
         {kViewer + "1 1 0 0 0 101 1 1 1 1 1 1",
-         "test.in:2:11: expected a surface ID (one of 100, 106, 107, 108, 111), got 101 (point "
+         "test.in:2:11: expected a surface ID (one of 100, 106, 107, 108, 111, 114), got 101 "
+         "(point "
          "light)"},
         {kViewer + "1 1 0 0 0 100 1 1 -1 0 1 1 0 1",
          "test.in:2:15: surface colour components must be >= 0"},

@@ -1,6 +1,6 @@
-// Lights with a position: point lights (101, 104), the spot light (109) and the sphere light
-// (110), sampled at known points and checked against values worked out by hand or by closed
-// forms computed here, not by the lights' own code.
+// Lights: point lights (101, 104), the spot light (109), the sphere light (110) and the
+// directional light (113), sampled at known points and checked against values worked out by
+// hand or by closed forms computed here, not by the lights' own code.
 #include <cmath>
 #include <numbers>
 #include <thread>
@@ -512,4 +512,107 @@ TEST(sphere_light_read_errors) {
                    "test.in:2:20: unexpected end of file: expected sphere light intensity");
     // The cap itself is allowed.
     CHECK_EQ(light_error("110 4096 0 0 0  1  1 1 1"), std::string());
+}
+
+// ---------------------------------------------------------------- directional light (113)
+
+TEST(directional_light_is_the_same_everywhere) {
+    // Travelling along (1, -2, 2), of length 3: every point sees it along (-1, 2, -2) / 3, at
+    // infinite distance, with its full intensity however far away the point is.
+    const Light light = read_light("113  1 -2 2  0.5 1 2");
+    CHECK_EQ(light.sample_count(), 1);
+    Random random(113);
+    for (int i = 0; i < 1000; ++i) {
+        const Vec3 x = random.in_box(i < 500 ? 10 : 1e6);
+        const LightSample s = light.sample(x, 0);
+        CHECK_NEAR(s.direction, Vec3(-1.0 / 3, 2.0 / 3, -2.0 / 3), 1e-15);
+        CHECK(std::isinf(s.distance) && s.distance > 0);
+        CHECK_NEAR(s.intensity, Spectrum(0.5, 1.0, 2.0), 0);
+    }
+}
+
+TEST(directional_light_on_a_plane_by_hand) {
+    // The floor y = 0 (colour (1, 0.5, 0.25), kd 0.8, ks 0.3, ke 4) lit by a light travelling
+    // along (0, -1, -1) / sqrt(2): cos(theta) = 1/sqrt(2) everywhere. Rays straight down see
+    // kd colour cos(theta) I; the mirror direction is (0, 1, 0), and r.s = 1/sqrt(2) too, so
+    // the highlight adds ks (1/sqrt(2))^4 I = ks I / 4. Near or far, the value is the same.
+    const Scene scene = parse_scene(join(kTestViewer,
+                                         "2 0  0 1 0  100 1 0.5 0.25 0.3 4 0.8 0 1\n"
+                                         "113  0 -1 -1  2 2 2\n"));
+    RenderOptions options;
+    options.reflection = false;  // the mirror ray would bring back the (black) sky anyway
+    const Tracer tracer(scene, options);
+    const double c = 1 / std::sqrt(2.0);
+    const Spectrum expected = Spectrum(2 * (0.8 * 1 * c + 0.3 / 4), 2 * (0.8 * 0.5 * c + 0.3 / 4),
+                                       2 * (0.8 * 0.25 * c + 0.3 / 4));
+    for (const double x : {0.0, 3.0, -250.0, 1e5})
+        for (const double height : {0.5, 10.0, 1000.0})
+            CHECK_NEAR(tracer.trace({{x, height, -x}, {0, -1, 0}}), expected, 1e-12);
+}
+
+TEST(directional_light_shadows_from_far_objects) {
+    // A ray straight down hits the floor at (0, 0, 0); the light travels along (0, -1, 0).
+    // A small sphere far up the line to the light shadows it however far it is; a sphere
+    // beside that line, or below the floor, does not.
+    const std::string base =
+        join(kTestViewer, "2 0  0 1 0  100 1 1 1 0 1 1 0 1\n", "113  0 -1 0  1 1 1\n");
+    const auto floor_value = [&](const std::string& extra) {
+        const Scene scene = parse_scene(base + extra);
+        return Tracer(scene, {}).trace({{0.3, 0.5, 0}, {0, -1, 0}})[0];
+    };
+    CHECK_NEAR(floor_value(""), 1.0, 1e-12);
+    for (const double height : {2.0, 1e3, 1e6})
+        CHECK_NEAR(floor_value(object_text(1, {0.5, 0.3, height, 0}) + " 100 1 1 1 0 1 1 0 1\n"),
+                   0.0, 0);
+    CHECK_NEAR(floor_value("1 0.5  5 1e3 0  100 1 1 1 0 1 1 0 1\n"), 1.0, 1e-12);
+    CHECK_NEAR(floor_value("1 0.5  0.3 -3 0  100 1 1 1 0 1 1 0 1\n"), 1.0, 1e-12);
+}
+
+TEST(directional_light_inside_an_affine_light) {
+    // The frame carries the direction the light travels: a local direction d travels along
+    // F d in the world, so the sample points along -F d / |F d|, still at infinite distance
+    // and with the inner light's intensity. Checked on random frames, including stretches.
+    Random random(1130);
+    int checked = 0;
+    for (int i = 0; i < 1000; ++i) {
+        Vec3 axes[3];
+        for (Vec3& a : axes) a = random.in_box(2);
+        if (std::fabs(dot(axes[0], cross(axes[1], axes[2]))) < 0.3) continue;
+        const Vec3 o = random.in_box(3), d = random.in_box(1), x = random.in_box(5);
+        if (length(d) < 0.1) continue;
+        const std::string text =
+            object_text(112, {o.x, o.y, o.z, axes[0].x, axes[0].y, axes[0].z, axes[1].x, axes[1].y,
+                              axes[1].z, axes[2].x, axes[2].y, axes[2].z}) +
+            " " + object_text(113, {d.x, d.y, d.z, 1, 2, 3});
+        const Vec3 world = d.x * axes[0] + d.y * axes[1] + d.z * axes[2];
+        const LightSample s = read_light(text).sample(x, 0);
+        CHECK_NEAR(s.direction, -world / length(world), 1e-12);
+        CHECK(std::isinf(s.distance));
+        CHECK_NEAR(s.intensity, Spectrum(1.0, 2.0, 3.0), 0);
+        ++checked;
+    }
+    CHECK(checked > 300);
+    // By hand: a quarter turn about z takes local x to world y, so a light travelling along
+    // local -x travels along world -y: straight down.
+    const LightSample down =
+        read_light("112 5 5 5  0 1 0  -1 0 0  0 0 1  113 -1 0 0  1 1 1").sample({1, 2, 3}, 0);
+    CHECK_NEAR(down.direction, Vec3(0, 1, 0), 1e-15);
+}
+
+TEST(directional_light_read_errors) {
+    // In "113 0 0 0  1 1 1" the direction starts at column 5, the intensity at 12.
+    CHECK_CONTAINS(light_error("113 0 0 0  1 1 1"),
+                   "test.in:2:5: directional light direction must have a non-zero, finite length");
+    CHECK_CONTAINS(light_error("113 1e200 1e200 0  1 1 1"),
+                   "test.in:2:5: directional light direction must have a non-zero, finite length");
+    CHECK_CONTAINS(light_error("113 0 -1 0  1 z 1"),
+                   "test.in:2:15: expected directional light intensity (a number), got 'z'");
+    CHECK_CONTAINS(light_error("113 0 -1 0  1 1"),
+                   "test.in:2:16: unexpected end of file: expected directional light intensity");
+    CHECK_CONTAINS(light_error("112 0 0 0  1 0 0  0 1 0  0 0 1  113 0 0 0  1 1 1"),
+                   "test.in:2:37: directional light direction must have a non-zero, finite "
+                   "length");
+    // A tiny direction is still a direction.
+    CHECK_NEAR(read_light("113 0 -1e-100 0  1 1 1").sample({0, 0, 0}, 0).direction, Vec3(0, 1, 0),
+               0);
 }

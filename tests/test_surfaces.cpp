@@ -197,7 +197,7 @@ TEST(checker_errors) {
                    "checker cell size must be > 0, got -1");
     CHECK_CONTAINS(surface_error("107 1 " + kRed), "unexpected end of file: expected surface ID");
     CHECK_CONTAINS(surface_error("107 1 " + kRed + " 1 1 0 0 0"),
-                   "expected a surface ID (one of 100, 106, 107, 108, 111), got 1 (sphere)");
+                   "expected a surface ID (one of 100, 106, 107, 108, 111, 114), got 1 (sphere)");
     CHECK_CONTAINS(surface_error("107 1 106 " + kBlue), "test.in:1:7: 106 (use default surface)");
 }
 

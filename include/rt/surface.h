@@ -11,14 +11,19 @@ namespace rt {
 
 class SceneReader;
 
-// The shading parameters at one point (the simple surface, ID 100, holds exactly these).
+// The shading parameters at one point. The simple surface (ID 100) sets the first six; the
+// glass surface (114) sets fresnel and absorption and leaves kt unused.
 struct Material {
     Spectrum colour{1.0};
-    double ks = 0;   // specular and mirror reflection
+    double ks = 0;   // specular highlight, and (unless fresnel) mirror reflection
     double ke = 1;   // specular exponent
     double kd = 1;   // diffuse
-    double kt = 0;   // transmission
+    double kt = 0;   // transmission (unless fresnel)
     double ior = 1;  // refractive index of the material behind the surface
+    // A dielectric: mirror and transmission weights are F and 1 - F from the Fresnel
+    // equations instead of ks and kt.
+    bool fresnel = false;
+    Spectrum absorption{0.0};  // per unit of distance travelled behind the surface
 };
 
 using SurfaceData = std::shared_ptr<const void>;

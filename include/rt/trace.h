@@ -25,6 +25,10 @@ Vec3 reflect(const Vec3& incoming, const Vec3& normal);
 // faces it (dot(incoming, normal) <= 0), where eta = n1 / n2. Nothing on total internal
 // reflection.
 std::optional<Vec3> refract(const Vec3& incoming, const Vec3& normal, double eta);
+// The Fresnel reflectance F = (R_s + R_p) / 2 of unpolarised light meeting, at an angle whose
+// cosine is cos_i, the boundary from a medium of index n1 into one of index n2: the fraction
+// reflected (1 - F passes through). 1 on total internal reflection.
+double fresnel_reflectance(double cos_i, double n1, double n2);
 
 struct SceneHit {
     const Object* object;
@@ -54,8 +58,10 @@ class Tracer {
     Tracer(const Scene& scene, const RenderOptions& options);
 
     // The light arriving back along a ray; depth and weight as the contract's recursion rules,
-    // ior the refractive index of the medium the ray travels in.
-    Spectrum trace(const Ray& ray, int depth = 0, double weight = 1, double ior = 1) const;
+    // ior and absorption those of the medium the ray travels in: what the ray brings back from
+    // a hit at distance t is multiplied by exp(-absorption t).
+    Spectrum trace(const Ray& ray, int depth = 0, double weight = 1, double ior = 1,
+                   const Spectrum& absorption = Spectrum(0.0)) const;
     // A primary ray's value in the current render mode.
     Spectrum shade_primary(const Ray& ray) const;
     // The value of pixel (x, y): the mean of options.samples^2 primary rays on a grid centred

@@ -26,6 +26,12 @@ SampleCountFn sample_count;
 SampleLightFn sample;
 }  // namespace rt::sphere_light
 
+namespace rt::directional_light {
+ReadLightFn read;
+SampleCountFn sample_count;
+SampleLightFn sample;
+}  // namespace rt::directional_light
+
 namespace rt::affine_light {
 ReadLightFn read;
 SampleCountFn sample_count;

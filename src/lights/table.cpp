@@ -17,6 +17,8 @@ constexpr std::array kLightTypes{
               sphere_light::sample},
     LightType{112, "affine light", affine_light::read, affine_light::sample_count,
               affine_light::sample},
+    LightType{113, "directional light", directional_light::read, directional_light::sample_count,
+              directional_light::sample},
 };
 
 static_assert(strictly_sorted_by_id(kLightTypes), "rows sorted by ID, each ID once");

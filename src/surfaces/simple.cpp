@@ -1,19 +1,30 @@
 // Simple surface (ID 100): colour; ks; ke; kd; kt; ior. The same parameters everywhere.
+#include <string>
+
 #include "rt/reader.h"
 #include "surfaces/surfaces.h"
 
 namespace rt {
 
-Material read_material(SceneReader& reader) {
+Spectrum read_non_negative_spectrum(SceneReader& reader, std::string_view what) {
+    const Location where = reader.next_location();
+    const Vec3 v = reader.vec3(what);
+    if (v.x < 0 || v.y < 0 || v.z < 0)
+        reader.fail(where, std::string(what) + " components must be >= 0");
+    return {v.x, v.y, v.z};
+}
+
+Material read_shading(SceneReader& reader) {
     Material m;
-    const Location colour_at = reader.next_location();
-    const Vec3 colour = reader.vec3("surface colour");
-    if (colour.x < 0 || colour.y < 0 || colour.z < 0)
-        reader.fail(colour_at, "surface colour components must be >= 0");
-    m.colour = Spectrum(colour.x, colour.y, colour.z);
+    m.colour = read_non_negative_spectrum(reader, "surface colour");
     m.ks = reader.non_negative("surface ks (specular coefficient)");
     m.ke = reader.non_negative("surface ke (specular exponent)");
     m.kd = reader.non_negative("surface kd (diffuse coefficient)");
+    return m;
+}
+
+Material read_material(SceneReader& reader) {
+    Material m = read_shading(reader);
     m.kt = reader.non_negative("surface kt (transmission coefficient)");
     // The original's own example gives ior 0 on an opaque surface, so the index is only
     // checked where light passes through.

@@ -12,6 +12,7 @@ constexpr std::array kSurfaceTypes{
     SurfaceType{107, "checker surface", checker_surface::read, checker_surface::evaluate},
     SurfaceType{108, "image-mapped surface", image_surface::read, image_surface::evaluate},
     SurfaceType{111, "affine surface", affine_surface::read, affine_surface::evaluate},
+    SurfaceType{114, "glass surface", glass_surface::read, simple_surface::evaluate},
 };
 
 static_assert(strictly_sorted_by_id(kSurfaceTypes), "rows sorted by ID, each ID once");
