@@ -291,7 +291,7 @@ class SceneWriter {
 
     // One primitive (ID and numbers, no surface) around a random place.
     void primitive(int nesting) {
-        const int kinds = nesting < 2 ? 13 : 12;
+        const int kinds = nesting < 2 ? 14 : 13;
         primitive_of_kind(random_.next() % static_cast<std::uint64_t>(kinds), nesting);
     }
 
@@ -394,6 +394,25 @@ class SceneWriter {
                         random_.uniform(-0.5, 0.5) * f.e3);
                 }
                 for (int v = 0; v < n; ++v) text_ << " 0 " << v + 1 << ' ' << (v + 1) % n + 1;
+                break;
+            }
+            case 12: {  // a quadric about c: an ellipsoid, a hyperboloid or a saddle, clipped
+                const Vec3 c{coordinate(h), coordinate(h), coordinate(h)};
+                const double a = random_.uniform(0.5, 2);
+                const double b = random_.uniform(0.5, 2) * (random_.uniform() < 0.5 ? 1 : -1);
+                const double e = random_.uniform(0.5, 2) * (random_.uniform() < 0.5 ? 1 : -1);
+                const double d = random_.uniform(-0.2, 0.2), f = random_.uniform(-0.2, 0.2),
+                             g = random_.uniform(-0.2, 0.2);
+                // Q = [a d f; d b g; f g e]; the linear part -Qc puts the centre at c.
+                const Vec3 qc{a * c.x + d * c.y + f * c.z, d * c.x + b * c.y + g * c.z,
+                              f * c.x + g * c.y + e * c.z};
+                text_ << "13 " << a << ' ' << b << ' ' << e << ' ' << d << ' ' << f << ' ' << g;
+                vec(-qc);
+                text_ << ' ' << dot(c, qc) - random_.uniform(0.2, 1);
+                vec(c - Vec3(random_.uniform(0.3, 1.5), random_.uniform(0.3, 1.5),
+                             random_.uniform(0.3, 1.5)));
+                vec(c + Vec3(random_.uniform(0.3, 1.5), random_.uniform(0.3, 1.5),
+                             random_.uniform(0.3, 1.5)));
                 break;
             }
             default: {  // an affine around any of the above, or around another affine

@@ -98,6 +98,15 @@ BoundsFn bounds;
 InsideFn inside;
 }  // namespace rt::box
 
+namespace rt::quadric {
+ReadShapeFn read;
+IntersectFn intersect;
+NormalFn normal;
+BoundsFn bounds;
+InsideFn inside;
+CrossFn cross;
+}  // namespace rt::quadric
+
 namespace rt::mesh {
 ReadShapeFn read;
 IntersectFn intersect;

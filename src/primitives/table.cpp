@@ -44,6 +44,10 @@ constexpr std::array kPrimitiveTypes{
                   .bounds = polygon::bounds},
     PrimitiveType{.id = 12, .name = "box", .read = box::read, .intersect = box::intersect,
                   .normal = box::normal, .bounds = box::bounds, .inside = box::inside},
+    // Its solid f < 0 is not clipped by its box, so it reports invisible crossings too.
+    PrimitiveType{.id = 13, .name = "quadric", .read = quadric::read,
+                  .intersect = quadric::intersect, .normal = quadric::normal,
+                  .bounds = quadric::bounds, .inside = quadric::inside, .cross = quadric::cross},
     // A shadow ray stops at the first triangle it meets.
     PrimitiveType{.id = 14, .name = "mesh", .read = mesh::read, .intersect = mesh::intersect,
                   .normal = mesh::normal, .bounds = mesh::bounds,
