@@ -2,7 +2,7 @@
 """Converts a binary PPM (P6, maxval 255) to PNG with the standard library only.
 
 A dev-time helper for the images under docs/ (not a build dependency):
-    build/rt scenes/luxo.in -o /tmp/luxo.ppm && tools/ppm_to_png.py /tmp/luxo.ppm docs/luxo.png
+    build/rt -a 0.02 scenes/luxo.in -o /tmp/luxo.ppm && docs/ppm_to_png.py /tmp/luxo.ppm docs/luxo.png
 """
 import struct
 import sys
