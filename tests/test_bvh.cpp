@@ -273,9 +273,9 @@ class SceneWriter {
                 affine_frame();
                 text_ << ' ';
             }
-            // A sphere, a torus or a box.
-            constexpr std::uint64_t kSolids[] = {0, 7, 9};
-            primitive_of_kind(kSolids[random_.next() % 3], nesting);
+            // A sphere, a torus, a box or a clipped quadric (whose solid is not clipped).
+            constexpr std::uint64_t kSolids[] = {0, 7, 9, 12};
+            primitive_of_kind(kSolids[random_.next() % 4], nesting);
             text_ << ' ' << surface();
         }
     }

@@ -323,3 +323,54 @@ TEST(reader_errors_name_the_operand) {
     // A composite at the top level reads no surface after it: the next number is an object.
     CHECK_EQ(scene_error(v + "20  1 1 0 0 0" + kRed + "  1 1 2 0 0" + kRed + "\n103 1 1 1"), "");
 }
+
+TEST(a_quadric_operand_is_its_whole_solid_not_only_its_clipped_surface) {
+    // A = unit sphere; B = the half-space z < 0 written as the quadric f = z (2I = 1), whose
+    // surface is clipped to a small box around the origin. A ∩ B is the lower hemisphere,
+    // but its flat face shows only inside B's clip box.
+    const std::string half_space = "13  0 0 0 0 0 0  0 0 0.5 0  -0.1 -0.1 -0.1  0.1 0.1 0.1";
+    const rt::Scene scene = parse_scene(std::string(kTestViewer) + "21  1 1 0 0 0" + kRed +
+                                        "  " + half_space + kBlue);
+    const rt::Tracer tracer(scene, {});
+    const rt::Object& object = scene.objects.at(0);
+    // Down through the invisible part of the face: the ray crosses into B where nothing is
+    // drawn and meets the sphere's bottom from inside.
+    const rt::Ray ray{{0.5, 0, 5}, {0, 0, -1}};
+    const auto found = tracer.closest_hit(ray);
+    CHECK(found.has_value());
+    CHECK_NEAR(found->hit.t, 5 + std::sqrt(0.75), 1e-12);
+    const Vec3 p = ray.at(found->hit.t);
+    CHECK_NEAR(object.shape.normal(p, found->hit), p, 1e-12);  // the sphere's, pointing out
+    CHECK_NEAR(object.surface_at(found->hit).at({}).colour, rt::Spectrum(1, 0, 0), 0);
+    // Down through the visible part: the flat face, B's surface, normal +z.
+    const rt::Ray centre{{0.05, 0, 5}, {0, 0, -1}};
+    const auto on_face = tracer.closest_hit(centre);
+    CHECK(on_face.has_value());
+    CHECK_NEAR(on_face->hit.t, 5.0, 1e-12);
+    CHECK_NEAR(object.shape.normal(centre.at(5), on_face->hit), Vec3(0, 0, 1), 1e-12);
+    CHECK_NEAR(object.surface_at(on_face->hit).at({}).colour, rt::Spectrum(0, 0, 1), 0);
+    // The composite's box is the sphere's: B's solid is not clipped, even though its
+    // surface's box is small, so the hierarchy keeps every hit (the linear scan agrees).
+    CHECK_NEAR(object.shape.bounds().min, Vec3(-1, -1, -1), 0);
+    CHECK_NEAR(object.shape.bounds().max, Vec3(1, 1, 1), 0);
+    rt::RenderOptions linear;
+    linear.accelerate = false;
+    const auto slow = rt::Tracer(scene, linear).closest_hit(ray);
+    CHECK(slow.has_value() && slow->hit.t == found->hit.t);
+}
+
+TEST(a_quadric_solid_is_bounded_only_when_it_is_an_ellipsoid_interior) {
+    const std::string clip = "  -10 -10 -10  10 10 10";
+    // x² + y² + z² − 1: the unit ball.
+    const rt::Shape ball = parse_shape("13  1 1 1 0 0 0 0 0 0 -1" + clip);
+    CHECK_NEAR(ball.solid_bounds().min, Vec3(-1, -1, -1), 1e-9);
+    CHECK_NEAR(ball.solid_bounds().max, Vec3(1, 1, 1), 1e-9);
+    // 1 − x² − y² − z²: everything outside the unit sphere.
+    CHECK(std::isinf(parse_shape("13  -1 -1 -1 0 0 0 0 0 0 1" + clip).solid_bounds().max.x));
+    // A cylinder x² + y² − 1: unbounded along z.
+    CHECK(std::isinf(parse_shape("13  1 1 0 0 0 0 0 0 0 -1" + clip).solid_bounds().max.z));
+    // An ellipsoid clipped to half: its surface box is cut, its solid box is not.
+    const rt::Shape half = parse_shape("13  1 1 1 0 0 0 0 0 0 -1  -2 -2 0  2 2 2");
+    CHECK_NEAR(half.bounds().min.z, 0.0, 1e-9);
+    CHECK_NEAR(half.solid_bounds().min.z, -1.0, 1e-9);
+}

@@ -105,6 +105,7 @@ NormalFn normal;
 BoundsFn bounds;
 InsideFn inside;
 CrossFn cross;
+BoundsFn solid_bounds;
 }  // namespace rt::quadric
 
 namespace rt::mesh {

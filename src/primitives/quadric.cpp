@@ -34,6 +34,7 @@ struct Quadric {
     Bounds clip;
     Bounds bounds;     // of the visible surface
     bool has_visible;  // false when no point of the surface can lie in the clip box
+    Bounds solid;      // of the solid f < 0
 };
 
 // A hit's computed point is off by rounding; the clip test allows this much, relative to the
@@ -103,13 +104,20 @@ bool visible_at(const Quadric& s, const Ray& ray, double t) {
     return s.clip.contains(ray.at(t), slack);
 }
 
-// The box of the surface inside the clip box: the clip box, cut down to the ellipsoid's
-// extent when Q is definite. has_visible is false when nothing is left. Worked out in long
-// double: for an ellipsoid far from the origin, g·c and J nearly cancel.
-Bounds visible_bounds(const Symmetric& q, const Vec3& g, double j, const Bounds& clip,
-                      bool& has_visible) {
+// The box of an ellipsoid: when Q is definite, the surface f = 0 is bounded, and so is one
+// side of it. Worked out in long double: for an ellipsoid far from the origin, g·c and J
+// nearly cancel.
+struct Extent {
+    bool definite = false;
+    bool solid_inside = false;  // f < 0 is the ellipsoid's interior (Q positive definite)
+    bool empty = false;         // f = 0 has no real points
+    Bounds box;                 // the surface's box, when definite and not empty
+    Vec3 centre;
+};
+
+Extent ellipsoid_extent(const Symmetric& q, const Vec3& g, double j) {
     using Wide = long double;
-    has_visible = true;
+    Extent extent;
     const Wide xx = q.xx, yy = q.yy, zz = q.zz, xy = q.xy, xz = q.xz, yz = q.yz;
     // The adjugate of Q (Q⁻¹ = adjugate / det).
     const Wide adj_xx = yy * zz - yz * yz, adj_yy = xx * zz - xz * xz, adj_zz = xx * yy - xy * xy;
@@ -118,36 +126,51 @@ Bounds visible_bounds(const Symmetric& q, const Vec3& g, double j, const Bounds&
     // Sylvester's criterion; then det / |Q|³ bounds the ratio of the extreme eigenvalues.
     const Wide sign = xx > 0 ? 1 : -1;
     const Wide norm = std::sqrt(xx * xx + yy * yy + zz * zz + 2 * (xy * xy + xz * xz + yz * yz));
-    const bool definite =
-        xx != 0 && adj_zz > 0 && sign * det > kDefiniteMargin * norm * norm * norm;
-    if (!definite) return clip;
+    extent.definite = xx != 0 && adj_zz > 0 && sign * det > kDefiniteMargin * norm * norm * norm;
+    if (!extent.definite) return extent;
+    extent.solid_inside = sign > 0;
     // The centre c = −Q⁻¹g, where f(x) = (x−c)ᵀQ(x−c) + f(c) and f(c) = g·c + J.
     const Wide cx = -(adj_xx * g.x + adj_xy * g.y + adj_xz * g.z) / det;
     const Wide cy = -(adj_xy * g.x + adj_yy * g.y + adj_yz * g.z) / det;
     const Wide cz = -(adj_xz * g.x + adj_yz * g.y + adj_zz * g.z) / det;
     // sign·Q is positive definite, so the surface is (x−c)ᵀ(sign·Q)(x−c) = k.
     const Wide k = -sign * (g.x * cx + g.y * cy + g.z * cz + j);
-    const Vec3 centre{static_cast<double>(cx), static_cast<double>(cy), static_cast<double>(cz)};
-    if (k < 0) {
-        has_visible = false;
-        return {centre, centre};
-    }
+    extent.centre = {static_cast<double>(cx), static_cast<double>(cy), static_cast<double>(cz)};
+    extent.empty = k < 0;
+    if (extent.empty) return extent;
     const Wide diagonal[3] = {adj_xx, adj_yy, adj_zz};
-    Bounds cut = clip;
     for (int axis = 0; axis < 3; ++axis) {
         const double half = static_cast<double>(std::sqrt(k * sign * diagonal[axis] / det));
-        const double pad = kExtentPad * (half + std::fabs(centre[axis]));
-        const double low = centre[axis] - half - pad, high = centre[axis] + half + pad;
-        const double cut_min = std::fmax(clip.min[axis], low);
-        const double cut_max = std::fmin(clip.max[axis], high);
-        if (cut_min > cut_max) {
-            has_visible = false;
-            return {clip.min, clip.min};
-        }
-        cut.min = with_component(cut.min, axis, cut_min);
-        cut.max = with_component(cut.max, axis, cut_max);
+        const double pad = kExtentPad * (half + std::fabs(extent.centre[axis]));
+        extent.box.min = with_component(extent.box.min, axis, extent.centre[axis] - half - pad);
+        extent.box.max = with_component(extent.box.max, axis, extent.centre[axis] + half + pad);
+    }
+    return extent;
+}
+
+// The box of the surface inside the clip box: the clip box, cut down to the ellipsoid's
+// extent when Q is definite. has_visible is false when nothing is left.
+Bounds visible_bounds(const Extent& extent, const Bounds& clip, bool& has_visible) {
+    has_visible = true;
+    if (!extent.definite) return clip;
+    if (extent.empty) {
+        has_visible = false;
+        return {extent.centre, extent.centre};
+    }
+    const Bounds cut = overlap(clip, extent.box);
+    if (cut.empty()) {
+        has_visible = false;
+        return {clip.min, clip.min};
     }
     return cut;
+}
+
+// The box of the solid f < 0, which the clip box does not cut: the ellipsoid's when f < 0 is
+// its interior (a point when that is empty), and unbounded otherwise.
+Bounds solid_box(const Extent& extent) {
+    if (!extent.definite || !extent.solid_inside) return Bounds::infinite();
+    if (extent.empty) return {extent.centre, extent.centre};
+    return extent.box;
 }
 
 }  // namespace
@@ -180,8 +203,9 @@ ShapeData read(SceneReader& reader) {
     const Symmetric q{k[0], k[1], k[2], k[3], k[4], k[5]};
     const Vec3 g{k[6], k[7], k[8]};
     const Bounds clip{clip_min, clip_max};
+    const Extent extent = ellipsoid_extent(q, g, k[9]);
     bool has_visible = true;
-    const Bounds bounds = visible_bounds(q, g, k[9], clip, has_visible);
+    const Bounds bounds = visible_bounds(extent, clip, has_visible);
     const Vec3 p0 = 0.5 * (bounds.min + bounds.max);
     // Qp0 + g and f(p0) = p0·(Qp0 + 2g) + J in extended precision: for a quadric far from the
     // origin their terms nearly cancel.
@@ -193,7 +217,8 @@ ShapeData read(SceneReader& reader) {
     const Wide value = px * (hx + g.x) + py * (hy + g.y) + pz * (hz + g.z) + k[9];
     const Vec3 linear{static_cast<double>(hx), static_cast<double>(hy), static_cast<double>(hz)};
     return std::make_shared<const Quadric>(
-        Quadric{q, linear, static_cast<double>(value), p0, clip, bounds, has_visible});
+        Quadric{q, linear, static_cast<double>(value), p0, clip, bounds, has_visible,
+                solid_box(extent)});
 }
 
 bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
@@ -241,6 +266,8 @@ Vec3 normal(const void* shape, const Vec3& point, const Hit&) {
 }
 
 Bounds bounds(const void* shape) { return static_cast<const Quadric*>(shape)->bounds; }
+
+Bounds solid_bounds(const void* shape) { return static_cast<const Quadric*>(shape)->solid; }
 
 bool inside(const void* shape, const Vec3& point) {
     const auto& s = *static_cast<const Quadric*>(shape);

@@ -47,7 +47,8 @@ constexpr std::array kPrimitiveTypes{
     // Its solid f < 0 is not clipped by its box, so it reports invisible crossings too.
     PrimitiveType{.id = 13, .name = "quadric", .read = quadric::read,
                   .intersect = quadric::intersect, .normal = quadric::normal,
-                  .bounds = quadric::bounds, .inside = quadric::inside, .cross = quadric::cross},
+                  .bounds = quadric::bounds, .inside = quadric::inside, .cross = quadric::cross,
+                  .solid_bounds = quadric::solid_bounds},
     // A shadow ray stops at the first triangle it meets.
     PrimitiveType{.id = 14, .name = "mesh", .read = mesh::read, .intersect = mesh::intersect,
                   .normal = mesh::normal, .bounds = mesh::bounds,
