@@ -62,6 +62,20 @@ inline Frame frame_around(const rt::Vec3& axis) {
     return {e1, cross(e3, e1), e3};
 }
 
+// The distance along a ray to a sphere, solved geometrically rather than as the quadratic
+// the primitives use: the nearest root beyond 1e-9, or nothing.
+inline std::optional<double> sphere_distance(const rt::Vec3& centre, double r, const rt::Ray& ray) {
+    const rt::Vec3 to_centre = centre - ray.origin;
+    const double along = dot(to_centre, ray.direction);
+    // Measured across the ray, without the cancellation of |c − o|² − along².
+    const double miss2 = length_squared(to_centre - along * ray.direction);
+    if (miss2 > r * r) return std::nullopt;
+    const double half = std::sqrt(r * r - miss2);
+    if (along - half > 1e-9) return along - half;
+    if (along + half > 1e-9) return along + half;
+    return std::nullopt;
+}
+
 // The nearest hit beyond a small tolerance, or nothing.
 inline std::optional<rt::Hit> first_hit(const rt::Shape& shape, const rt::Ray& ray,
                                         double t_max = rt::kInfinity) {

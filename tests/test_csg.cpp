@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "check.h"
-#include "scene_util.h"
 #include "rt/trace.h"
+#include "scene_util.h"
 
 using rt::Vec3;
 using rt_test::kTestViewer;
@@ -83,9 +83,8 @@ TEST(random_rays_hit_where_set_membership_changes) {
     for (int scene_index = 0; scene_index < 60; ++scene_index) {
         const Op op = static_cast<Op>(20 + static_cast<int>(random.next() % 3));
         const Solid a = random_solid(random), b = random_solid(random);
-        const rt::Shape shape =
-            parse_shape(std::to_string(static_cast<int>(op)) + " " + a.text() + kRed + " " +
-                        b.text() + kGreen);
+        const rt::Shape shape = parse_shape(std::to_string(static_cast<int>(op)) + " " + a.text() +
+                                            kRed + " " + b.text() + kGreen);
         for (int ray_index = 0; ray_index < 300; ++ray_index) {
             const Vec3 origin = normalized(random.in_box(1)) * 4;
             const rt::Ray ray{origin, normalized(random.in_box(0.8) - origin)};
@@ -150,8 +149,8 @@ TEST(points_of_known_side) {
 
 TEST(sphere_with_a_box_cut_out) {
     // The octant x, y, z > 0 of a unit sphere is cut away by a box.
-    const rt::Scene scene =
-        parse_scene(std::string(kTestViewer) + "22  1 1 0 0 0" + kRed + "  12 0 0 0 2 2 2" + kGreen);
+    const rt::Scene scene = parse_scene(std::string(kTestViewer) + "22  1 1 0 0 0" + kRed +
+                                        "  12 0 0 0 2 2 2" + kGreen);
     const rt::Tracer tracer(scene, {});
     const rt::Object& object = scene.objects.at(0);
     // Straight down onto the cut: the sphere's cap there is gone, and the box's face z = 0
@@ -200,8 +199,8 @@ TEST(a_lens_focuses_paraxial_rays_at_its_back_focal_distance) {
     const double f = 1 / ((n - 1) * (2 / R - (n - 1) * d / (n * R * R)));
     const double bfd = f * (1 - (n - 1) * d / (n * R));
     const std::string glass = " 100 1 1 1 0 1 0 1 " + std::to_string(n);
-    const rt::Scene scene =
-        parse_scene(std::string(kTestViewer) + "21  1 2 0 0 -1.7" + glass + "  1 2 0 0 1.7" + glass);
+    const rt::Scene scene = parse_scene(std::string(kTestViewer) + "21  1 2 0 0 -1.7" + glass +
+                                        "  1 2 0 0 1.7" + glass);
     const rt::Tracer tracer(scene, {});
     const rt::Object& lens = scene.objects.at(0);
     for (const double h : {1e-4, 2e-4, 5e-4}) {
@@ -254,12 +253,11 @@ TEST(a_plane_is_a_half_space) {
 TEST(nested_composites_report_the_operand_surface_and_normal) {
     // A die: a box minus a union of two pips, nested inside an affine that moves it by +10 in
     // x. The pips are spheres centred on the face z = 1.
-    const std::string pips =
-        "20  1 0.3 -0.5 0 1" + kGreen + "  1 0.3 0.5 0 1" + kBlue;
+    const std::string pips = "20  1 0.3 -0.5 0 1" + kGreen + "  1 0.3 0.5 0 1" + kBlue;
     const std::string die = "22  12 -1 -1 -1 1 1 1" + kRed + "  " + pips;
-    const rt::Scene scene = parse_scene(std::string(kTestViewer) +
-                                        "7  10 0 0  1 0 0  0 1 0  0 0 1  " + die +
-                                        "\n1 0.1  0 0 -50" + kRed);
+    const rt::Scene scene =
+        parse_scene(std::string(kTestViewer) + "7  10 0 0  1 0 0  0 1 0  0 0 1  " + die +
+                    "\n1 0.1  0 0 -50" + kRed);
     CHECK_EQ(scene.objects.size(), std::size_t{2});  // no surface was read after the affine
     const rt::Object& object = scene.objects.at(0);
     const rt::Tracer tracer(scene, {});
@@ -310,16 +308,16 @@ TEST(reader_errors_name_the_operand) {
                    "test.in:2:5: union operand A is a disk (3), which has no inside");
     CHECK_CONTAINS(scene_error(v + "21  1 1 0 0 0" + kRed + "  5 0 0 0 1 0 0 0 1 0" + kRed),
                    "test.in:2:36: intersection operand B is a triangle (5), which has no inside");
-    CHECK_CONTAINS(
-        scene_error(v + "22  7 0 0 0 1 0 0 0 1 0 0 0 1  3 0 0 0 0 0 1 1" + kRed + " 1 1 0 0 0" +
-                    kRed),
-        "test.in:2:5: difference operand A is an affine (7), which has no inside");
+    CHECK_CONTAINS(scene_error(v + "22  7 0 0 0 1 0 0 0 1 0 0 0 1  3 0 0 0 0 0 1 1" + kRed +
+                               " 1 1 0 0 0" + kRed),
+                   "test.in:2:5: difference operand A is an affine (7), which has no inside");
     // Composites nest like affines, and count toward the same limit.
     std::string deep = v;
     for (int i = 0; i < 40; ++i) deep += "20 ";
     CHECK_CONTAINS(scene_error(deep + "1 1 0 0 0" + kRed), "objects nested more than 32 deep");
     // End of file inside an operand.
-    CHECK_CONTAINS(scene_error(v + "20  1 1 0 0 0" + kRed), "unexpected end of file: expected union operand B ID");
+    CHECK_CONTAINS(scene_error(v + "20  1 1 0 0 0" + kRed),
+                   "unexpected end of file: expected union operand B ID");
     // A composite at the top level reads no surface after it: the next number is an object.
     CHECK_EQ(scene_error(v + "20  1 1 0 0 0" + kRed + "  1 1 2 0 0" + kRed + "\n103 1 1 1"), "");
 }
@@ -329,8 +327,8 @@ TEST(a_quadric_operand_is_its_whole_solid_not_only_its_clipped_surface) {
     // surface is clipped to a small box around the origin. A ∩ B is the lower hemisphere,
     // but its flat face shows only inside B's clip box.
     const std::string half_space = "13  0 0 0 0 0 0  0 0 0.5 0  -0.1 -0.1 -0.1  0.1 0.1 0.1";
-    const rt::Scene scene = parse_scene(std::string(kTestViewer) + "21  1 1 0 0 0" + kRed +
-                                        "  " + half_space + kBlue);
+    const rt::Scene scene =
+        parse_scene(std::string(kTestViewer) + "21  1 1 0 0 0" + kRed + "  " + half_space + kBlue);
     const rt::Tracer tracer(scene, {});
     const rt::Object& object = scene.objects.at(0);
     // Down through the invisible part of the face: the ray crosses into B where nothing is

@@ -154,19 +154,6 @@ Ray random_ray(Random& random, const Vec3& centre, double spread, int i) {
     return {o, i % 4 ? normalized(aim - o) : random.unit_vector()};
 }
 
-// The geometric distance to a sphere (as in test_sphere.cpp).
-std::optional<double> sphere_distance(const Vec3& centre, double r, const Ray& ray) {
-    const Vec3 to_centre = centre - ray.origin;
-    const double along = dot(to_centre, ray.direction);
-    // Measured across the ray, without the cancellation of |c − o|² − along².
-    const double miss2 = length_squared(to_centre - along * ray.direction);
-    if (miss2 > r * r) return std::nullopt;
-    const double half = std::sqrt(r * r - miss2);
-    if (along - half > 1e-9) return along - half;
-    if (along + half > 1e-9) return along + half;
-    return std::nullopt;
-}
-
 }  // namespace
 
 TEST(sphere_as_quadric_matches_sphere_formula) {

@@ -6,22 +6,6 @@
 using namespace rt;
 using namespace rt_test;
 
-namespace {
-
-// The closed form, solved geometrically rather than as the quadratic the code uses.
-std::optional<double> expected_distance(const Vec3& centre, double r, const Ray& ray) {
-    const Vec3 to_centre = centre - ray.origin;
-    const double along = dot(to_centre, ray.direction);
-    const double miss2 = length_squared(to_centre) - along * along;
-    if (miss2 > r * r) return std::nullopt;
-    const double half = std::sqrt(r * r - miss2);
-    if (along - half > 1e-9) return along - half;
-    if (along + half > 1e-9) return along + half;
-    return std::nullopt;
-}
-
-}  // namespace
-
 TEST(random_rays_match_closed_form) {
     Random random(1);
     int hits = 0, misses = 0, inside = 0;
@@ -34,7 +18,7 @@ TEST(random_rays_match_closed_form) {
         const Vec3 o = i % 3 == 0 ? c + random.in_box(r * 0.55) : random.in_box(10);
         const Vec3 aim = c + random.in_box(r * 1.5);
         const Ray ray{o, i % 4 ? normalized(aim - o) : random.unit_vector()};
-        const auto expected = expected_distance(c, r, ray);
+        const auto expected = sphere_distance(c, r, ray);
         const auto hit = first_hit(s, ray);
         CHECK_EQ(hit.has_value(), expected.has_value());
         if (!hit || !expected) {

@@ -137,8 +137,8 @@ bool collect(const void* shape, const Ray& ray, double t_min, Crossings& out) {
     bool inside_now = started_inside;
     std::size_t i = a_begin, j = b_begin;
     while (i < b_begin || j < b_end) {
-        const double t = std::min(i < b_begin ? out[i].hit.t : kInfinity,
-                                  j < b_end ? out[j].hit.t : kInfinity);
+        const double t =
+            std::min(i < b_begin ? out[i].hit.t : kInfinity, j < b_end ? out[j].hit.t : kInfinity);
         Crossing decisive;
         bool from_a = false;
         for (; i < b_begin && out[i].hit.t == t; ++i) {

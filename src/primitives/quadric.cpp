@@ -216,9 +216,8 @@ ShapeData read(SceneReader& reader) {
     const Wide hz = q.xz * px + q.yz * py + q.zz * pz + g.z;
     const Wide value = px * (hx + g.x) + py * (hy + g.y) + pz * (hz + g.z) + k[9];
     const Vec3 linear{static_cast<double>(hx), static_cast<double>(hy), static_cast<double>(hz)};
-    return std::make_shared<const Quadric>(
-        Quadric{q, linear, static_cast<double>(value), p0, clip, bounds, has_visible,
-                solid_box(extent)});
+    return std::make_shared<const Quadric>(Quadric{q, linear, static_cast<double>(value), p0, clip,
+                                                   bounds, has_visible, solid_box(extent)});
 }
 
 bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
