@@ -7,7 +7,6 @@
 // --linear renders with the hierarchy turned off (every ray tests every object).
 // Peak memory is the process's peak so far (getrusage's ru_maxrss), so it is the figure of
 // one scene only when rt_bench is given one scene; bench/run runs it once per scene.
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
@@ -21,6 +20,7 @@
 
 #include "rt/error.h"
 #include "rt/reader.h"
+#include "rt/statistics.h"
 #include "rt/trace.h"
 
 namespace {
@@ -37,11 +37,7 @@ double median(std::vector<double> values) {
     return n % 2 == 1 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
 }
 
-double peak_megabytes() {
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    return static_cast<double>(usage.ru_maxrss) / 1024;  // Linux reports KiB
-}
+double peak_megabytes() { return static_cast<double>(rt::peak_memory_bytes()) / (1024 * 1024); }
 
 struct Figures {
     std::size_t objects = 0;
@@ -90,7 +86,7 @@ void print_row(const std::string& name, const Figures& f) {
     std::printf("%-16s %9zu %11s %8.3f %8.3f %9.3f %8.2f %10.3f %12.3f %9.3f %8.1f\n", name.c_str(),
                 f.objects, size.c_str(), f.read_s, f.build_s, f.render_s,
                 millions(f.rays.total()) / f.render_s, millions(f.rays.primary_rays),
-                millions(f.rays.secondary_rays), millions(f.rays.shadow_rays), peak_megabytes());
+                millions(f.rays.secondary_rays()), millions(f.rays.shadow_rays), peak_megabytes());
     std::fflush(stdout);
 }
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string_view>
 
+#include "rt/reader.h"  // the resolution limits
+
 namespace rt {
 
 namespace {
@@ -33,6 +35,33 @@ double parse_double(const std::string& option, const std::string& text) {
     if (ec != std::errc() || ptr != end || text.empty() || !std::isfinite(value) || value < 0)
         throw UsageError{option + " expects a number >= 0, got '" + text + "'"};
     return value;
+}
+
+// WxH, each side and the whole within the limits the viewer has in a scene.
+ImageSize parse_size(const std::string& text) {
+    const auto x = text.find('x');
+    const auto bad = [&] {
+        return UsageError{"--size expects WIDTHxHEIGHT in pixels (such as 640x480), got '" + text +
+                          "'"};
+    };
+    if (x == std::string::npos) throw bad();
+    ImageSize size;
+    const auto side = [&](std::string_view digits, int& out) {
+        const auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), out);
+        if (digits.empty() || ptr != digits.data() + digits.size() ||
+            ec == std::errc::invalid_argument)
+            throw bad();
+        if (ec == std::errc::result_out_of_range || out < 1 || out > kMaxResolution)
+            throw UsageError{"--size " + text + " is out of range: each side must be from 1 to " +
+                             std::to_string(kMaxResolution) + " pixels"};
+    };
+    const std::string_view whole(text);
+    side(whole.substr(0, x), size.width);
+    side(whole.substr(x + 1), size.height);
+    if (static_cast<long>(size.width) * size.height > kMaxPixels)
+        throw UsageError{"--size " + text + " is out of range: at most " +
+                         std::to_string(kMaxPixels) + " pixels in all"};
+    return size;
 }
 
 RenderMode parse_mode(const std::string& text) {
@@ -66,7 +95,14 @@ options:
                       (compared clamped to [0, 1])
   -j, --threads N     worker threads (default: one per hardware thread);
                       the image is the same whatever N is
+      --size WxH      render W x H pixels instead of the viewer's resolution; the
+                      field of view stays (rt warns when pixels become non-square)
   -r, --read-only     read and check the scene, print a summary, render nothing
+  -q, --quiet         print nothing on stderr but errors
+      --progress      show progress even when stderr is not a terminal (a line
+                      every 5 seconds); on a terminal it is shown anyway
+      --stats         print times, ray counts, intersection tests, threads and
+                      peak memory on stderr at the end
       --no-ambient    leave out the ambient term
       --no-diffuse    leave out diffuse reflection of the lights
       --no-specular   leave out specular highlights
@@ -133,8 +169,16 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
             r.adaptive_threshold = parse_double("-a", take_value());
         } else if (arg == "-j" || arg == "--threads") {
             r.threads = parse_int("-j", take_value(), 1, kMaxThreadsOption);
+        } else if (arg == "--size") {
+            cl.size = parse_size(take_value());
         } else if (arg == "-r" || arg == "--read-only") {
             flag(cl.read_only, true);
+        } else if (arg == "-q" || arg == "--quiet") {
+            flag(cl.quiet, true);
+        } else if (arg == "--progress") {
+            flag(cl.progress, true);
+        } else if (arg == "--stats") {
+            flag(cl.stats, true);
         } else if (arg == "--no-ambient") {
             flag(r.ambient, false);
         } else if (arg == "--no-diffuse") {

@@ -1,6 +1,7 @@
 #include "rt/reader.h"
 
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -9,6 +10,7 @@
 
 #include "rt/error.h"
 #include "rt/ppm.h"
+#include "rt/statistics.h"
 
 namespace rt {
 
@@ -268,22 +270,29 @@ Scene SceneReader::read_scene() {
 }
 
 Scene read_scene(std::istream& in, const std::string& name, const std::filesystem::path& base_dir,
-                 int threads) {
+                 int threads, StageTimes* times) {
+    using Clock = std::chrono::steady_clock;
+    const auto start = Clock::now();
     SceneReader reader(in, name, base_dir, threads);
     Scene scene = reader.read_scene();
+    const auto read = Clock::now();
     scene.build_index(threads);
+    if (times != nullptr) {
+        times->read = std::chrono::duration<double>(read - start).count();
+        times->build = std::chrono::duration<double>(Clock::now() - read).count();
+    }
     return scene;
 }
 
-Scene read_scene_file(const std::string& path, int threads) {
+Scene read_scene_file(const std::string& path, int threads, StageTimes* times) {
     if (path == "-")
-        return read_scene(std::cin, "<stdin>", std::filesystem::current_path(), threads);
+        return read_scene(std::cin, "<stdin>", std::filesystem::current_path(), threads, times);
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
         throw Error(path + ": is a directory, not a scene file");
     std::ifstream file(path, std::ios::binary);
     if (!file) throw Error(path + ": cannot open scene file");
-    return read_scene(file, path, std::filesystem::path(path).parent_path(), threads);
+    return read_scene(file, path, std::filesystem::path(path).parent_path(), threads, times);
 }
 
 }  // namespace rt

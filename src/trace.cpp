@@ -86,11 +86,12 @@ std::optional<SceneHit> Tracer::closest_hit(const Ray& ray) const {
     Interval range{hit_tolerance(ray.origin), kInfinity};
     if (options_.accelerate) {
         ObjectIndex::Found found;
-        if (!scene_.index.closest(ray, range, found)) return std::nullopt;
+        if (!scene_.index.closest(ray, range, found, &stats_.object_tests)) return std::nullopt;
         return SceneHit{&scene_.objects[found.object], found.hit};
     }
     // The linear scan: every object in file order.
     std::optional<SceneHit> best;
+    stats_.object_tests += scene_.objects.size();
     for (const Object& object : scene_.objects) {
         Hit hit;
         if (object.shape.intersect(ray, range, hit)) {
@@ -108,9 +109,11 @@ bool Tracer::blocked(const Ray& ray, double distance) const {
 bool Tracer::blocked(const Ray& ray, double distance, ObjectIndex::Blocker* last) const {
     ++stats_.shadow_rays;
     const Interval range{hit_tolerance(ray.origin), distance};
-    if (options_.accelerate) return scene_.index.any(ray, range, last);
-    return std::any_of(scene_.objects.begin(), scene_.objects.end(),
-                       [&](const Object& o) { return o.shape.intersect_any(ray, range); });
+    if (options_.accelerate) return scene_.index.any(ray, range, last, &stats_.object_tests);
+    return std::any_of(scene_.objects.begin(), scene_.objects.end(), [&](const Object& o) {
+        ++stats_.object_tests;
+        return o.shape.intersect_any(ray, range);
+    });
 }
 
 Spectrum Tracer::direct_light(const Vec3& point, const Vec3& facing_normal, const Vec3& reflected,
@@ -138,7 +141,7 @@ Spectrum Tracer::direct_light(const Vec3& point, const Vec3& facing_normal, cons
 
 Spectrum Tracer::trace(const Ray& ray, int depth, double weight, double ior,
                        const Spectrum& absorption) const {
-    ++(depth == 0 ? stats_.primary_rays : stats_.secondary_rays);
+    if (depth == 0) ++stats_.primary_rays;  // secondary rays are counted where they start
     const auto found = closest_hit(ray);
     // A ray that escapes brings back the ambient intensity.
     if (!found) return scene_.ambient;
@@ -156,9 +159,11 @@ Spectrum Tracer::trace(const Ray& ray, int depth, double weight, double ior,
     const double next_ior = leaving ? 1.0 : m.ior;
     const Split split = split_light(m, ray.direction, facing, ior, next_ior, options_.refraction);
     const double kt = split.transmit;
-    if (split.refracted && kt > 0 && options_.refraction && may_trace(depth + 1, weight * kt))
+    if (split.refracted && kt > 0 && options_.refraction && may_trace(depth + 1, weight * kt)) {
+        ++stats_.refracted_rays;
         result += kt * trace({point, *split.refracted}, depth + 1, weight * kt, next_ior,
                              leaving ? Spectrum(0.0) : m.absorption);
+    }
 
     if (options_.ambient) result += scene_.ambient * m.colour * m.kd;
     const Vec3 reflected = reflect(ray.direction, facing);
@@ -166,8 +171,10 @@ Spectrum Tracer::trace(const Ray& ray, int depth, double weight, double ior,
         result += direct_light(point, facing, reflected, m, split.highlight);
     // The reflected ray stays in the medium it came through.
     const double ks = split.mirror;
-    if (ks > 0 && options_.reflection && may_trace(depth + 1, weight * ks))
+    if (ks > 0 && options_.reflection && may_trace(depth + 1, weight * ks)) {
+        ++stats_.reflected_rays;
         result += ks * trace({point, reflected}, depth + 1, weight * ks, ior, absorption);
+    }
     // Light from this hit crossed the medium for found->hit.t on its way back.
     if (!absorption.is_black()) result *= transmittance(absorption, found->hit.t);
     return result;
@@ -237,11 +244,21 @@ struct PixelRect {
 
 // Calls work(tracer, y) for every row y of `rect`, rows shared among the tracers' threads
 // (one thread per tracer); returns once every row is done.
+// With `progress`, each finished row and the rays traced for it are published.
 template <typename Work>
-void for_each_row(const std::vector<Tracer>& tracers, const PixelRect& rect, const Work& work) {
+void for_each_row(const std::vector<Tracer>& tracers, const PixelRect& rect, const Work& work,
+                  RenderProgress* progress = nullptr) {
     std::atomic<int> next_row{rect.y0};
     auto worker = [&](const Tracer& tracer) {
-        for (int y = next_row++; y < rect.y1; y = next_row++) work(tracer, y);
+        std::uint64_t published = tracer.stats().total();
+        for (int y = next_row++; y < rect.y1; y = next_row++) {
+            work(tracer, y);
+            if (progress == nullptr) continue;
+            const std::uint64_t traced = tracer.stats().total();
+            progress->rays.fetch_add(traced - published, std::memory_order_relaxed);
+            progress->rows_done.fetch_add(1, std::memory_order_relaxed);
+            published = traced;
+        }
     };
     std::vector<std::jthread> pool;
     for (std::size_t i = 1; i < tracers.size(); ++i)
@@ -275,11 +292,19 @@ bool needs_supersampling(const Raster& one_ray, const PixelRect& known, int x, i
 // region of the image (a later issue) rendered this way decides at its edges exactly as the
 // whole image does.
 void render_adaptive(const std::vector<Tracer>& tracers, const PixelRect& rect,
-                     const PixelRect& image, double threshold, Raster& raster) {
+                     const PixelRect& image, double threshold, Raster& raster,
+                     RenderProgress* progress) {
     const PixelRect known = rect.with_margin(image);
-    for_each_row(tracers, known, [&](const Tracer& tracer, int y) {
-        for (int x = known.x0; x < known.x1; ++x) raster.set(x, y, tracer.one_ray(x, y));
-    });
+    // The one-ray pass and the grid pass trace; deciding is quick and not counted.
+    if (progress != nullptr)
+        progress->rows_total.store(static_cast<std::uint64_t>((known.y1 - known.y0) +
+                                                              (rect.y1 - rect.y0)));
+    for_each_row(
+        tracers, known,
+        [&](const Tracer& tracer, int y) {
+            for (int x = known.x0; x < known.x1; ++x) raster.set(x, y, tracer.one_ray(x, y));
+        },
+        progress);
     // Decided for the whole rectangle before any pixel is overwritten by its grid's mean. Bytes,
     // not vector<bool>: threads write neighbouring flags.
     std::vector<unsigned char> supersample(static_cast<std::size_t>(rect.width()) *
@@ -291,18 +316,22 @@ void render_adaptive(const std::vector<Tracer>& tracers, const PixelRect& rect,
         for (int x = rect.x0; x < rect.x1; ++x)
             flag(x, y) = needs_supersampling(raster, known, x, y, threshold) ? 1 : 0;
     });
-    for_each_row(tracers, rect, [&](const Tracer& tracer, int y) {
-        for (int x = rect.x0; x < rect.x1; ++x) {
-            if (flag(x, y) == 0) continue;
-            const Spectrum centre = raster.at(x, y);
-            raster.set(x, y, tracer.pixel(x, y, &centre));
-        }
-    });
+    for_each_row(
+        tracers, rect,
+        [&](const Tracer& tracer, int y) {
+            for (int x = rect.x0; x < rect.x1; ++x) {
+                if (flag(x, y) == 0) continue;
+                const Spectrum centre = raster.at(x, y);
+                raster.set(x, y, tracer.pixel(x, y, &centre));
+            }
+        },
+        progress);
 }
 
 }  // namespace
 
-Raster render(const Scene& scene, const RenderOptions& options, RenderStats* stats) {
+Raster render(const Scene& scene, const RenderOptions& options, RenderStats* stats,
+              RenderProgress* progress) {
     const Viewer& v = scene.viewer;
     Raster raster(v.xres, v.yres);
     const PixelRect image{0, 0, v.xres, v.yres};
@@ -310,11 +339,15 @@ Raster render(const Scene& scene, const RenderOptions& options, RenderStats* sta
     // One tracer per thread, each counting its own rays; merged once all have joined.
     const std::vector<Tracer> tracers(static_cast<std::size_t>(threads), Tracer(scene, options));
     if (options.adaptive_threshold) {
-        render_adaptive(tracers, image, image, *options.adaptive_threshold, raster);
+        render_adaptive(tracers, image, image, *options.adaptive_threshold, raster, progress);
     } else {
-        for_each_row(tracers, image, [&](const Tracer& tracer, int y) {
-            for (int x = 0; x < v.xres; ++x) raster.set(x, y, tracer.pixel(x, y));
-        });
+        if (progress != nullptr) progress->rows_total.store(static_cast<std::uint64_t>(v.yres));
+        for_each_row(
+            tracers, image,
+            [&](const Tracer& tracer, int y) {
+                for (int x = 0; x < v.xres; ++x) raster.set(x, y, tracer.pixel(x, y));
+            },
+            progress);
     }
     if (stats != nullptr)
         for (const Tracer& tracer : tracers) *stats += tracer.stats();

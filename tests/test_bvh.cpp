@@ -568,7 +568,7 @@ TEST(counts_rays_of_each_kind) {
     render(scene, options, &stats);
     CHECK_EQ(stats.primary_rays, 16u);
     CHECK_EQ(stats.shadow_rays, 16u);
-    CHECK_EQ(stats.secondary_rays, 16u);
+    CHECK_EQ(stats.secondary_rays(), 16u);
 }
 
 TEST(a_tracer_needs_the_index_unless_linear) {

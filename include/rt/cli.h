@@ -1,6 +1,7 @@
 // The command line: parsing is separate from main() so that tests can check it.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -8,11 +9,21 @@
 
 namespace rt {
 
+// An image size given on the command line (--size WxH).
+struct ImageSize {
+    int width = 0;
+    int height = 0;
+};
+
 struct CommandLine {
     RenderOptions render;
+    std::optional<ImageSize> size;  // overrides the viewer's resolution
     std::string input = "-";   // the scene; "-" is standard input
     std::string output = "-";  // the image; "-" is standard output
     bool read_only = false;
+    bool quiet = false;     // -q: nothing on stderr but errors
+    bool progress = false;  // --progress: progress lines even when stderr is not a terminal
+    bool stats = false;     // --stats: statistics on stderr at the end
     bool help = false;
     bool version = false;
 };

@@ -40,10 +40,13 @@ class ObjectIndex {
     // The nearest hit in range, exactly as testing every object in file order finds it: the
     // smallest distance, and of objects hit at the same distance, the one earliest in the
     // file.
-    bool closest(const Ray& ray, Interval range, Found& found) const;
+    // With `tests`, the number of objects asked is added to it.
+    bool closest(const Ray& ray, Interval range, Found& found,
+                 std::uint64_t* tests = nullptr) const;
     // Whether any object is hit in range. With `last`, its object is tried first, and it
     // is set to the blocker found.
-    bool any(const Ray& ray, Interval range, Blocker* last = nullptr) const;
+    bool any(const Ray& ray, Interval range, Blocker* last = nullptr,
+             std::uint64_t* tests = nullptr) const;
 
   private:
     // No entry, and no object: the largest 32-bit number, which indexes neither.

@@ -99,10 +99,14 @@ class SceneReader {
 // A number as messages show it (%g).
 std::string format_number(double value);
 
+struct StageTimes;
+
 // Convenience wrappers: read a whole scene from a stream or a file ("-" for stdin) and build
-// its hierarchy on up to `threads` threads.
+// its hierarchy on up to `threads` threads. With `times`, the seconds spent reading and
+// building are stored in it.
 Scene read_scene(std::istream& in, const std::string& name,
-                 const std::filesystem::path& base_dir = {}, int threads = 1);
-Scene read_scene_file(const std::string& path, int threads = 1);
+                 const std::filesystem::path& base_dir = {}, int threads = 1,
+                 StageTimes* times = nullptr);
+Scene read_scene_file(const std::string& path, int threads = 1, StageTimes* times = nullptr);
 
 }  // namespace rt

@@ -1,6 +1,7 @@
 // The recursive tracer of sections 1.6 to 1.10 of the original.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -35,17 +36,23 @@ struct SceneHit {
     Hit hit;
 };
 
-// How many rays of each kind a render traced.
+// How many rays of each kind a render traced, and how many times an object was asked whether
+// a ray hits it (a mesh counts once, however many of its triangles it tests).
 struct RenderStats {
     std::uint64_t primary_rays = 0;
-    std::uint64_t secondary_rays = 0;  // reflected and refracted
+    std::uint64_t reflected_rays = 0;
+    std::uint64_t refracted_rays = 0;
     std::uint64_t shadow_rays = 0;
+    std::uint64_t object_tests = 0;
 
-    std::uint64_t total() const { return primary_rays + secondary_rays + shadow_rays; }
+    std::uint64_t secondary_rays() const { return reflected_rays + refracted_rays; }
+    std::uint64_t total() const { return primary_rays + secondary_rays() + shadow_rays; }
     RenderStats& operator+=(const RenderStats& other) {
         primary_rays += other.primary_rays;
-        secondary_rays += other.secondary_rays;
+        reflected_rays += other.reflected_rays;
+        refracted_rays += other.refracted_rays;
         shadow_rays += other.shadow_rays;
+        object_tests += other.object_tests;
         return *this;
     }
 };
@@ -104,6 +111,15 @@ int worker_threads(int requested);
 // component, both clamped to [0, 1]) are replaced by their options.samples^2 grid: exactly the
 // value Tracer::pixel gives them. When stats is given, the counts of every thread are added
 // into it.
-Raster render(const Scene& scene, const RenderOptions& options, RenderStats* stats = nullptr);
+// What a render has done so far, for a progress display on another thread. Each thread
+// publishes once per row it finishes: rows of every pass that traces, and rays traced.
+struct RenderProgress {
+    std::atomic<std::uint64_t> rows_total{0};
+    std::atomic<std::uint64_t> rows_done{0};
+    std::atomic<std::uint64_t> rays{0};
+};
+
+Raster render(const Scene& scene, const RenderOptions& options, RenderStats* stats = nullptr,
+              RenderProgress* progress = nullptr);
 
 }  // namespace rt

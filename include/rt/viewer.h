@@ -2,6 +2,8 @@
 // span the image plane.
 #pragma once
 
+#include <optional>
+
 #include "rt/ray.h"
 
 namespace rt {
@@ -23,5 +25,9 @@ struct Viewer {
         return {eye, normalized(centre + alpha * x + beta * y - eye)};
     }
 };
+
+// Pixels are square when xres : yres is |x| : |y|. When they are not (to within rounding a
+// side to a whole pixel), the height that would make them square at this width.
+std::optional<int> square_pixel_height(const Viewer& v);
 
 }  // namespace rt

@@ -1,0 +1,52 @@
+// The progress display: a line on stderr that shows how far a render has got, updated from a
+// thread of its own while the render runs.
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
+#include <ostream>
+#include <string>
+#include <thread>
+
+#include "rt/trace.h"
+
+namespace rt {
+
+// "0:07", "1:05:09": whole seconds, as a clock shows them.
+std::string format_duration(double seconds);
+// "42%  12.3 Mrays/s  0:05 elapsed  0:07 left"; the time left is left out until it can be
+// estimated (fraction 0).
+std::string format_progress(double fraction, double rays_per_second, double elapsed_seconds);
+
+class ProgressDisplay {
+  public:
+    enum class Style {
+        terminal,  // one line, rewritten in place and erased at the end
+        lines,     // a plain line now and then, and one at the end (for logs)
+    };
+
+    // Starts showing `progress` on `out` until destroyed (or finish() is called).
+    ProgressDisplay(const RenderProgress& progress, Style style, std::ostream& out);
+    ~ProgressDisplay() { finish(); }
+    ProgressDisplay(const ProgressDisplay&) = delete;
+    ProgressDisplay& operator=(const ProgressDisplay&) = delete;
+
+    // Stops the display: the terminal line is erased, the lines style prints its last line.
+    void finish();
+
+  private:
+    void run(std::stop_token stop);
+    std::string current_line() const;
+
+    const RenderProgress& progress_;
+    Style style_;
+    std::ostream& out_;
+    std::chrono::steady_clock::time_point start_;
+    std::mutex mutex_;
+    std::condition_variable_any wake_;
+    bool shown_ = false;   // whether the terminal line is on the screen
+    std::jthread thread_;  // last: it starts once everything above is ready
+};
+
+}  // namespace rt

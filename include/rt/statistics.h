@@ -1,0 +1,35 @@
+// What --stats prints at the end of a render: where the time went, what was traced, and what
+// it cost.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "rt/trace.h"
+
+namespace rt {
+
+// Seconds spent in each stage of a run.
+struct StageTimes {
+    double read = 0;    // reading and checking the scene
+    double build = 0;   // building its hierarchy
+    double render = 0;  // tracing every pixel
+    double write = 0;   // encoding and writing the image
+};
+
+struct RunStatistics {
+    StageTimes times;
+    RenderStats rays;
+    int threads = 0;
+    std::size_t objects = 0;
+    std::size_t lights = 0;
+    std::uint64_t peak_memory_bytes = 0;
+};
+
+// The process's peak resident memory so far, in bytes (0 where the system does not say).
+std::uint64_t peak_memory_bytes();
+
+// The lines --stats prints, each starting "rt: stats: " and ending in a newline.
+std::string format_statistics(const RunStatistics& s);
+
+}  // namespace rt

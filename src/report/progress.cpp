@@ -1,0 +1,89 @@
+#include "rt/progress.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace rt {
+
+namespace {
+
+// A render shorter than this shows no terminal line at all, so quick renders do not flicker.
+constexpr std::chrono::milliseconds kTerminalDelay{500};
+constexpr std::chrono::milliseconds kTerminalInterval{250};
+// Logs get a line this often: often enough to show life, rarely enough to stay readable.
+constexpr std::chrono::seconds kLinesInterval{5};
+
+}  // namespace
+
+std::string format_duration(double seconds) {
+    const long total = std::lround(std::max(0.0, seconds));
+    char text[32];
+    if (total >= 3600)
+        std::snprintf(text, sizeof text, "%ld:%02ld:%02ld", total / 3600, total / 60 % 60,
+                      total % 60);
+    else
+        std::snprintf(text, sizeof text, "%ld:%02ld", total / 60, total % 60);
+    return text;
+}
+
+std::string format_progress(double fraction, double rays_per_second, double elapsed_seconds) {
+    char head[64];
+    std::snprintf(head, sizeof head, "%3.0f%%  %.1f Mrays/s  ",
+                  std::floor(100 * std::clamp(fraction, 0.0, 1.0)), rays_per_second / 1e6);
+    std::string line = head + format_duration(elapsed_seconds) + " elapsed";
+    if (fraction > 0 && fraction < 1)
+        line += "  " + format_duration(elapsed_seconds * (1 - fraction) / fraction) + " left";
+    return line;
+}
+
+ProgressDisplay::ProgressDisplay(const RenderProgress& progress, Style style, std::ostream& out)
+    : progress_(progress),
+      style_(style),
+      out_(out),
+      start_(std::chrono::steady_clock::now()),
+      thread_([this](std::stop_token stop) { run(stop); }) {}
+
+std::string ProgressDisplay::current_line() const {
+    const std::uint64_t total = progress_.rows_total.load(std::memory_order_relaxed);
+    const std::uint64_t done = progress_.rows_done.load(std::memory_order_relaxed);
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const double fraction = total > 0 ? static_cast<double>(done) / static_cast<double>(total) : 0;
+    const double rate =
+        elapsed > 0 ? static_cast<double>(progress_.rays.load(std::memory_order_relaxed)) / elapsed
+                    : 0;
+    return "rt: " + format_progress(fraction, rate, elapsed);
+}
+
+void ProgressDisplay::run(std::stop_token stop) {
+    std::unique_lock lock(mutex_);
+    // Waits for the interval; true when the display is being stopped instead.
+    const auto stopped_during = [&](auto interval) {
+        wake_.wait_for(lock, stop, interval, [] { return false; });
+        return stop.stop_requested();
+    };
+    if (style_ == Style::terminal) {
+        if (stopped_during(kTerminalDelay)) return;
+        do {
+            // Back to the start of the line, the new text, and the rest of the line cleared.
+            out_ << '\r' << current_line() << "\x1b[K" << std::flush;
+            shown_ = true;
+        } while (!stopped_during(kTerminalInterval));
+        return;
+    }
+    while (!stopped_during(kLinesInterval)) out_ << current_line() << '\n' << std::flush;
+}
+
+void ProgressDisplay::finish() {
+    if (!thread_.joinable()) return;
+    thread_.request_stop();
+    thread_.join();
+    if (style_ == Style::terminal) {
+        if (shown_) out_ << "\r\x1b[K" << std::flush;
+    } else {
+        out_ << current_line() << '\n' << std::flush;
+    }
+}
+
+}  // namespace rt
