@@ -52,7 +52,8 @@ bool ObjectIndex::closest(const Ray& ray, Interval range, Found& found,
                           std::uint64_t* tests) const {
     double best = range.t_max;
     std::uint32_t best_object = kNone;
-    std::uint64_t asked = 0;
+    std::uint64_t uncounted = 0;
+    std::uint64_t& asked = tests != nullptr ? *tests : uncounted;
     auto test = [&](const Entry& e) {
         ++asked;
         // The linear scan asks each object with its own best so far, and an intersect's
@@ -70,21 +71,13 @@ bool ObjectIndex::closest(const Ray& ray, Interval range, Found& found,
     // The unbounded objects first: a floor under everything prunes much of the tree.
     for (std::size_t i = bounded_count_; i < entries_.size(); ++i) test(entries_[i]);
     bvh_.closest(ray, range.t_min, best, [&](std::uint32_t i) { test(entries_[i]); });
-    if (tests != nullptr) *tests += asked;
     return best_object != kNone;
 }
 
 bool ObjectIndex::any(const Ray& ray, Interval range, Blocker* last, std::uint64_t* tests) const {
     Hit hit;
-    std::uint64_t asked = 0;
-    // Counted as the search ends, whichever way it ends.
-    struct Count {
-        std::uint64_t& asked;
-        std::uint64_t* tests;
-        ~Count() {
-            if (tests != nullptr) *tests += asked;
-        }
-    } count{asked, tests};
+    std::uint64_t uncounted = 0;
+    std::uint64_t& asked = tests != nullptr ? *tests : uncounted;
     // The last blocker is tried first; if it does not block, it is not tried again below
     // (for a mesh that would be a second search of all its triangles).
     std::uint32_t tried = kNone;
