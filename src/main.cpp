@@ -1,10 +1,12 @@
-// rt: reads a scene, traces it and writes a PPM image (section 1.10.3 of the original).
+// rt: reads a scene, traces it and writes a PPM, PNG or PFM image (section 1.10.3 of the
+// original).
 #include <exception>
 #include <iostream>
 #include <new>
 
 #include "rt/cli.h"
 #include "rt/error.h"
+#include "rt/image_io.h"
 #include "rt/ppm.h"
 #include "rt/reader.h"
 #include "rt/trace.h"
@@ -29,8 +31,10 @@ int run(const rt::CommandLine& cl) {
     }
     // The output file is claimed before rendering, so a bad path fails fast, and is only
     // replaced once the whole image has been written.
+    rt::ImageEncoding encoding = cl.image;
+    encoding.metadata = rt::image_metadata(cl);
     rt::OutputFile output(cl.output);
-    output.write(rt::render(scene, cl.render));
+    output.write_bytes(rt::encode_image(rt::render(scene, cl.render), encoding));
     return kExitOk;
 }
 

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "rt/image_io.h"
 #include "rt/options.h"
 
 namespace rt {
@@ -12,6 +13,10 @@ struct CommandLine {
     RenderOptions render;
     std::string input = "-";   // the scene; "-" is standard input
     std::string output = "-";  // the image; "-" is standard output
+    // The file's format (from -f, else the output's extension, else PPM), bits and gamma;
+    // its metadata is filled in from the rest by image_metadata().
+    ImageEncoding image;
+    bool metadata = true;  // --no-metadata turns it off
     bool read_only = false;
     bool help = false;
     bool version = false;
@@ -23,6 +28,11 @@ struct UsageError {
 };
 
 CommandLine parse_command_line(const std::vector<std::string>& args);
+
+// What the image file records about what made it: "Software" (rt and its version), "Scene"
+// (the scene file as named, "<stdin>" for standard input) and "Options" (every option that
+// changes pixels, with its value, defaults included), or nothing under --no-metadata.
+ImageMetadata image_metadata(const CommandLine& cl);
 
 // The text of --help.
 const char* usage_text();
