@@ -402,3 +402,27 @@ TEST(png_decodes_files_another_encoder_wrote) {
     CHECK(throws_error([&] { rt::decode_png(grey2.substr(0, 40)); }));
     CHECK(throws_error([] { rt::decode_png("P6\n1 1\n255\n\0\0\0"sv); }));
 }
+
+TEST(damaged_streams_and_files_fail_cleanly) {
+    // Every damage is either reported as rt::Error or decodes to something; none reads out
+    // of bounds (the sanitizer builds check that part).
+    const std::string data = random_bytes(5000, 8, 5) + std::string(3000, 'q');
+    const std::string packed = rt::zlib_compress(data);
+    const std::string png = rt::encode_png(rt::quantize(busy_raster(40, 30), 8, {}), {});
+    Random random(9);
+    int failures = 0;
+    for (int round = 0; round < 300; ++round) {
+        std::string z = packed;
+        std::string p = png;
+        for (int flips = 0; flips < 3; ++flips) {
+            z[random.next() % z.size()] ^= static_cast<char>(1 << (random.next() % 8));
+            p[8 + random.next() % (p.size() - 8)] ^= static_cast<char>(1 << (random.next() % 8));
+        }
+        failures += throws_error([&] { rt::zlib_decompress(z, data.size()); });
+        failures += throws_error(
+            [&] { rt::zlib_decompress(z.substr(0, random.next() % z.size()), 1 << 20); });
+        failures += throws_error([&] { rt::decode_png(p); });
+        failures += throws_error([&] { rt::inflate(random_bytes(64, random.next()), 1 << 16); });
+    }
+    CHECK(failures > 600);  // most damage is caught (by the checksums where nothing else)
+}
