@@ -165,9 +165,7 @@ std::vector<std::uint16_t> canonical_codes(const std::vector<std::uint8_t>& leng
         const int l = lengths[s];
         if (l == 0) continue;
         const int code = next[l]++;
-        int reversed = 0;
-        for (int b = 0; b < l; ++b) reversed |= ((code >> b) & 1) << (l - 1 - b);
-        codes[s] = static_cast<std::uint16_t>(reversed);
+        codes[s] = static_cast<std::uint16_t>(reverse_bits(code, l));
     }
     return codes;
 }
@@ -417,27 +415,27 @@ void Encoder::flush_block(bool last) {
 
     // Dynamic codes, and the code-length code that describes them.
     use_at_least_two(distance_freq);
-    Code literal_code = make_code(huffman_code_lengths(literal_freq, kMaxCodeBits));
-    Code distance_code_ = make_code(huffman_code_lengths(distance_freq, kMaxCodeBits));
+    Code literal_tree = make_code(huffman_code_lengths(literal_freq, kMaxCodeBits));
+    Code distance_tree = make_code(huffman_code_lengths(distance_freq, kMaxCodeBits));
     int hlit = kLiteralLengthCodes;
-    while (hlit > 257 && literal_code.lengths[hlit - 1] == 0) --hlit;
+    while (hlit > 257 && literal_tree.lengths[hlit - 1] == 0) --hlit;
     int hdist = kDistanceCodes;
-    while (hdist > 1 && distance_code_.lengths[hdist - 1] == 0) --hdist;
-    std::vector<std::uint8_t> all_lengths(literal_code.lengths.begin(),
-                                          literal_code.lengths.begin() + hlit);
-    all_lengths.insert(all_lengths.end(), distance_code_.lengths.begin(),
-                       distance_code_.lengths.begin() + hdist);
+    while (hdist > 1 && distance_tree.lengths[hdist - 1] == 0) --hdist;
+    std::vector<std::uint8_t> all_lengths(literal_tree.lengths.begin(),
+                                          literal_tree.lengths.begin() + hlit);
+    all_lengths.insert(all_lengths.end(), distance_tree.lengths.begin(),
+                       distance_tree.lengths.begin() + hdist);
     const std::vector<LengthSymbol> runs = run_length_code(all_lengths);
     std::vector<std::uint32_t> length_freq(kCodeLengthCodes, 0);
     for (const LengthSymbol& r : runs) ++length_freq[r.symbol];
     use_at_least_two(length_freq);
-    const Code length_code_ = make_code(huffman_code_lengths(length_freq, kMaxCodeLengthBits));
+    const Code length_tree = make_code(huffman_code_lengths(length_freq, kMaxCodeLengthBits));
     int hclen = kCodeLengthCodes;
-    while (hclen > 4 && length_code_.lengths[kCodeLengthOrder[hclen - 1]] == 0) --hclen;
+    while (hclen > 4 && length_tree.lengths[kCodeLengthOrder[hclen - 1]] == 0) --hclen;
     std::uint64_t dynamic_bits = 3 + 5 + 5 + 4 + 3 * static_cast<std::uint64_t>(hclen) +
-                                 cost(literal_code.lengths, distance_code_.lengths);
+                                 cost(literal_tree.lengths, distance_tree.lengths);
     for (const LengthSymbol& r : runs)
-        dynamic_bits += length_code_.lengths[r.symbol] + length_symbol_extra_bits(r.symbol);
+        dynamic_bits += length_tree.lengths[r.symbol] + length_symbol_extra_bits(r.symbol);
 
     std::vector<std::uint8_t> fixed_distance_lengths(kDistanceCodes, kFixedDistanceBits);
     std::vector<std::uint8_t> fixed_literal_lengths(
@@ -473,12 +471,12 @@ void Encoder::flush_block(bool last) {
         writer_.put(static_cast<std::uint32_t>(hlit - 257), 5);
         writer_.put(static_cast<std::uint32_t>(hdist - 1), 5);
         writer_.put(static_cast<std::uint32_t>(hclen - 4), 4);
-        for (int i = 0; i < hclen; ++i) writer_.put(length_code_.lengths[kCodeLengthOrder[i]], 3);
+        for (int i = 0; i < hclen; ++i) writer_.put(length_tree.lengths[kCodeLengthOrder[i]], 3);
         for (const LengthSymbol& r : runs) {
-            writer_.put(length_code_.codes[r.symbol], length_code_.lengths[r.symbol]);
+            writer_.put(length_tree.codes[r.symbol], length_tree.lengths[r.symbol]);
             writer_.put(r.extra, length_symbol_extra_bits(r.symbol));
         }
-        write_symbols(literal_code, distance_code_);
+        write_symbols(literal_tree, distance_tree);
     }
     if (last) writer_.align();
     symbols_.clear();

@@ -42,4 +42,12 @@ inline constexpr int fixed_literal_length_bits(int symbol) {
 }
 inline constexpr int kFixedDistanceBits = 5;
 
+// Huffman codes are defined most significant bit first but packed from the least
+// significant end, so both sides use them bit-reversed.
+inline constexpr int reverse_bits(int code, int length) {
+    int reversed = 0;
+    for (int b = 0; b < length; ++b) reversed |= ((code >> b) & 1) << (length - 1 - b);
+    return reversed;
+}
+
 }  // namespace rt::deflate_format

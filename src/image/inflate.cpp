@@ -73,8 +73,7 @@ class HuffmanDecoder {
             const int l = lengths[s];
             if (l == 0) continue;
             const int code = next[l]++;
-            int reversed = 0;
-            for (int b = 0; b < l; ++b) reversed |= ((code >> b) & 1) << (l - 1 - b);
+            const int reversed = reverse_bits(code, l);
             for (std::size_t i = static_cast<std::size_t>(reversed); i < table_.size();
                  i += std::size_t{1} << l)
                 table_[i] = static_cast<std::uint16_t>(s << 4 | l);
