@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <optional>
 #include <string_view>
 
 #include "rt/reader.h"  // the resolution limits
@@ -64,6 +65,42 @@ ImageSize parse_size(const std::string& text) {
     return size;
 }
 
+ImageFormat parse_format(const std::string& text) {
+    if (const auto format = parse_format_name(text)) return *format;
+    throw UsageError{"-f expects ppm, png or pfm, got '" + text + "'"};
+}
+
+// The format the output's name asks for; a name without an extension is PPM, as standard
+// output is, but an extension rt does not write is refused rather than mislabelled.
+ImageFormat format_of_output(const std::string& output) {
+    if (output == "-") return ImageFormat::ppm;
+    bool has_extension = false;
+    if (const auto format = format_from_extension(output, &has_extension)) return *format;
+    if (!has_extension) return ImageFormat::ppm;
+    throw UsageError{"cannot tell the image format of '" + output +
+                     "' from its extension: name it .ppm, .png or .pfm, or give -f ppm|png|pfm"};
+}
+
+const char* mode_name(RenderMode mode) {
+    switch (mode) {
+        case RenderMode::trace:
+            return "trace";
+        case RenderMode::depth:
+            return "depth";
+        case RenderMode::colour:
+            return "colour";
+        case RenderMode::normal:
+            return "normal";
+    }
+    return "?";
+}
+
+std::string number_text(double value) {
+    char buffer[32];
+    const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+    return std::string(buffer, result.ptr);
+}
+
 RenderMode parse_mode(const std::string& text) {
     if (text == "trace") return RenderMode::trace;
     if (text == "depth") return RenderMode::depth;
@@ -77,12 +114,21 @@ RenderMode parse_mode(const std::string& text) {
 const char* usage_text() {
     return R"(usage: rt [options] [scene]
 
-Renders a scene in rt's numeric scene format to a binary PPM image.
+Renders a scene in rt's numeric scene format to a PPM, PNG or PFM image.
 The scene is read from the file named, or from standard input when it is
 '-' or absent.
 
 options:
-  -o, --output FILE   write the image to FILE ('-', the default: standard output)
+  -o, --output FILE   write the image to FILE ('-', the default: standard output);
+                      its extension (.ppm, .png, .pfm) chooses the format
+  -f, --format FMT    ppm, png or pfm, whatever FILE is called (default: from
+                      FILE's extension; ppm for standard output or no extension)
+      --bits N        8 (default) or 16 bits per sample (PPM and PNG)
+      --gamma G       how values in [0, 1] are written: linear (default, as
+                      round(255 c)), srgb (the sRGB transfer function), or a
+                      number G > 0 for c^(1/G); PFM is always linear
+      --no-metadata   do not record rt's version, the scene and the options in
+                      the image (a PPM comment or a PNG text chunk)
   -d, --depth N       maximum recursion depth for reflected and refracted rays
                       (default 7; 0 traces no secondary rays)
   -w, --weight W      do not trace rays whose weight is below W (default 0.01)
@@ -122,6 +168,8 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     CommandLine cl;
     bool have_input = false;
     bool have_samples = false;
+    std::optional<ImageFormat> format;
+    bool have_bits = false;
     for (std::size_t i = 0; i < args.size(); ++i) {
         std::string arg = args[i];
         std::string value;
@@ -134,7 +182,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
                 has_inline_value = true;
             }
         } else if (arg.size() > 2 && arg[0] == '-' &&
-                   std::string_view("dwmsajo").find(arg[1]) != std::string_view::npos) {
+                   std::string_view("dwmsajof").find(arg[1]) != std::string_view::npos) {
             value = arg.substr(2);
             arg.resize(2);
             has_inline_value = true;
@@ -156,6 +204,23 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
         if (arg == "-o" || arg == "--output") {
             cl.output = take_value();
             if (cl.output.empty()) throw UsageError{"-o needs a file name"};
+        } else if (arg == "-f" || arg == "--format") {
+            format = parse_format(take_value());
+        } else if (arg == "--bits") {
+            const std::string bits = take_value();
+            if (bits != "8" && bits != "16")
+                throw UsageError{"--bits expects 8 or 16, got '" + bits + "'"};
+            cl.image.bits = bits == "8" ? 8 : 16;
+            have_bits = true;
+        } else if (arg == "--gamma") {
+            const std::string text = take_value();
+            const auto gamma = parse_gamma(text);
+            if (!gamma)
+                throw UsageError{"--gamma expects linear, srgb or a number > 0, got '" + text +
+                                 "'"};
+            cl.image.gamma = *gamma;
+        } else if (arg == "--no-metadata") {
+            flag(cl.metadata, false);
         } else if (arg == "-d" || arg == "--depth") {
             r.max_depth = parse_int("-d", take_value(), 0, kMaxDepthOption);
         } else if (arg == "-w" || arg == "--weight") {
@@ -208,7 +273,36 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
         }
     }
     if (cl.render.adaptive_threshold && !have_samples) cl.render.samples = kDefaultAdaptiveSamples;
+    cl.image.format = format ? *format : format_of_output(cl.output);
+    if (cl.image.format == ImageFormat::pfm && have_bits)
+        throw UsageError{"--bits does not apply to PFM, which always holds 32-bit floats"};
     return cl;
+}
+
+ImageMetadata image_metadata(const CommandLine& cl) {
+    ImageMetadata metadata;
+    if (!cl.metadata) return metadata;
+    metadata.set("Software", "rt " RT_VERSION);
+    metadata.set("Scene", cl.input == "-" ? "<stdin>" : cl.input);
+    const RenderOptions& r = cl.render;
+    std::string options = "-d " + std::to_string(r.max_depth) + " -w " + number_text(r.min_weight) +
+                          " -m " + mode_name(r.mode) + " -s " + std::to_string(r.samples);
+    if (r.adaptive_threshold) options += " -a " + number_text(*r.adaptive_threshold);
+    if (cl.size)
+        options += " --size " + std::to_string(cl.size->width) + "x" +
+                   std::to_string(cl.size->height);
+    const std::pair<bool, const char*> parts[] = {
+        {r.ambient, "--no-ambient"},       {r.diffuse, "--no-diffuse"},
+        {r.specular, "--no-specular"},     {r.shadows, "--no-shadows"},
+        {r.reflection, "--no-reflection"}, {r.refraction, "--no-refraction"}};
+    for (const auto& [on, name] : parts)
+        if (!on) options += std::string(" ") + name;
+    // PFM stores the raster's values: bits and gamma do not touch it.
+    if (cl.image.format != ImageFormat::pfm)
+        options +=
+            " --bits " + std::to_string(cl.image.bits) + " --gamma " + gamma_name(cl.image.gamma);
+    metadata.set("Options", options);
+    return metadata;
 }
 
 }  // namespace rt

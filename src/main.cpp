@@ -1,4 +1,5 @@
-// rt: reads a scene, traces it and writes a PPM image (section 1.10.3 of the original).
+// rt: reads a scene, traces it and writes a PPM, PNG or PFM image (section 1.10.3 of the
+// original).
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 
 #include "rt/cli.h"
 #include "rt/error.h"
+#include "rt/image_io.h"
 #include "rt/ppm.h"
 #include "rt/progress.h"
 #include "rt/reader.h"
@@ -64,6 +66,8 @@ int run(const rt::CommandLine& cl) {
     }
     // The output file is claimed before rendering, so a bad path fails fast, and is only
     // replaced once the whole image has been written.
+    rt::ImageEncoding encoding = cl.image;
+    encoding.metadata = rt::image_metadata(cl);
     rt::OutputFile output(cl.output);
 
     rt::RenderProgress progress;
@@ -79,7 +83,7 @@ int run(const rt::CommandLine& cl) {
     if (display) display->finish();
 
     start = Clock::now();
-    output.write(image);
+    output.write_bytes(rt::encode_image(image, encoding));
     statistics.times.write = seconds_since(start);
     if (cl.stats) {
         statistics.threads = std::clamp(threads, 1, scene.viewer.yres);

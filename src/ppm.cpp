@@ -9,6 +9,7 @@
 #include <random>
 
 #include "rt/error.h"
+#include "rt/image_io.h"
 
 namespace rt {
 
@@ -19,16 +20,7 @@ std::uint8_t to_byte(double c) {
 }
 
 void write_ppm(std::ostream& out, const Raster& raster) {
-    out << "P6\n" << raster.width() << ' ' << raster.height() << "\n255\n";
-    std::vector<char> row(static_cast<std::size_t>(raster.width()) * 3);
-    for (int y = 0; y < raster.height(); ++y) {
-        for (int x = 0; x < raster.width(); ++x) {
-            const Spectrum s = raster.at(x, y);
-            for (std::size_t i = 0; i < 3; ++i)
-                row[static_cast<std::size_t>(x) * 3 + i] = static_cast<char>(to_byte(s[i]));
-        }
-        out.write(row.data(), static_cast<std::streamsize>(row.size()));
-    }
+    out << encode_image(raster, ImageEncoding{});
 }
 
 OutputFile::OutputFile(std::string path) : path_(std::move(path)) {
@@ -51,9 +43,11 @@ OutputFile::~OutputFile() {
     }
 }
 
-void OutputFile::write(const Raster& raster) {
+void OutputFile::write(const Raster& raster) { write_bytes(encode_image(raster, ImageEncoding{})); }
+
+void OutputFile::write_bytes(std::string_view bytes) {
     if (path_ == "-") {
-        write_ppm(std::cout, raster);
+        std::cout.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
         std::cout.flush();
         if (!std::cout) throw Error("<stdout>: cannot write the image");
         committed_ = true;
@@ -61,7 +55,7 @@ void OutputFile::write(const Raster& raster) {
     }
     {
         std::ofstream out(temporary_, std::ios::binary | std::ios::trunc);
-        write_ppm(out, raster);
+        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
         out.close();
         if (!out) throw Error(path_ + ": cannot write the image: " + std::strerror(errno));
     }

@@ -45,10 +45,10 @@ TEST(size_renders_exactly_what_the_viewer_at_that_resolution_renders) {
     const auto dir = work_dir("size");
     write_file(dir / "scene.in", scene_at(40, 30));
     write_file(dir / "big.in", scene_at(80, 60));
-    const RunResult resized = run_rt(dir, "scene.in --size 80x60 -o resized.ppm");
+    const RunResult resized = run_rt(dir, "scene.in --no-metadata --size 80x60 -o resized.ppm");
     CHECK_EQ(resized.status, 0);
     CHECK_EQ(resized.err, "");  // the same 4 : 3 shape: no warning
-    const RunResult direct = run_rt(dir, "big.in -o direct.ppm");
+    const RunResult direct = run_rt(dir, "big.in --no-metadata -o direct.ppm");
     CHECK_EQ(direct.status, 0);
     const std::string a = read_file(dir / "resized.ppm"), b = read_file(dir / "direct.ppm");
     CHECK(ppm_size(a) == std::make_pair(80, 60));
@@ -60,7 +60,7 @@ TEST(size_renders_exactly_what_the_viewer_at_that_resolution_renders) {
 TEST(size_warns_when_pixels_stop_being_square) {
     const auto dir = work_dir("size-warning");
     write_file(dir / "scene.in", scene_at(40, 30));
-    const RunResult wide = run_rt(dir, "scene.in --size 60x30 -o out.ppm");
+    const RunResult wide = run_rt(dir, "scene.in --no-metadata --size 60x30 -o out.ppm");
     CHECK_EQ(wide.status, 0);
     CHECK_CONTAINS(wide.err, "rt: warning: --size 60x30 gives non-square pixels");
     CHECK_CONTAINS(wide.err, "use --size 60x45");

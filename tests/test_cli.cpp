@@ -22,7 +22,7 @@ constexpr const char* kKeep = "previous image, must survive";
 TEST(renders_a_file_to_a_ppm) {
     const fs::path dir = work_dir("render");
     write_file(dir / "scene.in", kScene);
-    const RunResult r = run_rt(dir, "-d 7 scene.in -o out.ppm");
+    const RunResult r = run_rt(dir, "-d 7 --no-metadata scene.in -o out.ppm");
     CHECK_EQ(r.status, 0);
     CHECK_EQ(r.err, std::string());
     const std::string image = read_file(dir / "out.ppm");
@@ -37,12 +37,13 @@ TEST(renders_a_file_to_a_ppm) {
 TEST(stdin_and_stdout) {
     const fs::path dir = work_dir("pipes");
     write_file(dir / "scene.in", kScene);
-    CHECK_EQ(run_rt(dir, "scene.in -o file.ppm").status, 0);
+    // The scene's name is in the image's metadata; without it, the same bytes.
+    CHECK_EQ(run_rt(dir, "--no-metadata scene.in -o file.ppm").status, 0);
     const std::string from_file = read_file(dir / "file.ppm");
-    RunResult r = run_rt(dir, "< scene.in");  // no scene argument: stdin; no -o: stdout
+    RunResult r = run_rt(dir, "--no-metadata < scene.in");  // no scene: stdin; no -o: stdout
     CHECK_EQ(r.status, 0);
     CHECK(r.out == from_file);
-    r = run_rt(dir, "- -o - < scene.in");
+    r = run_rt(dir, "--no-metadata - -o - < scene.in");
     CHECK(r.out == from_file);
     CHECK(run_rt(dir, "-j 1 scene.in").out == run_rt(dir, "-j 3 scene.in").out);
 }
@@ -201,8 +202,8 @@ TEST(adaptive_option) {
     CHECK_CONTAINS(r.err, "rt: -a expects a number >= 0, got '-1'");
     // A threshold no difference exceeds renders the one-ray image; any threshold renders the
     // same bytes on any number of threads.
-    CHECK_EQ(run_rt(dir, "scene.in -o one.ppm").status, 0);
-    CHECK_EQ(run_rt(dir, "-a 1 scene.in -o above.ppm").status, 0);
+    CHECK_EQ(run_rt(dir, "--no-metadata scene.in -o one.ppm").status, 0);
+    CHECK_EQ(run_rt(dir, "--no-metadata -a 1 scene.in -o above.ppm").status, 0);
     CHECK(read_file(dir / "one.ppm") == read_file(dir / "above.ppm"));
     CHECK_EQ(run_rt(dir, "-a 0.05 -j 1 scene.in -o j1.ppm").status, 0);
     CHECK_EQ(run_rt(dir, "-a 0.05 -j 3 scene.in -o j3.ppm").status, 0);

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <ostream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "rt/raster.h"
@@ -14,7 +15,8 @@ namespace rt {
 // round(255 * clamp(c, 0, 1)); NaN counts as 0.
 std::uint8_t to_byte(double c);
 
-// Writes the raster as binary PPM (P6, maxval 255).
+// Writes the raster as binary PPM (P6, maxval 255), without metadata: encode_image with the
+// default encoding.
 void write_ppm(std::ostream& out, const Raster& raster);
 
 // Writes to a temporary file beside `path` and renames it over `path` only once everything is
@@ -27,7 +29,10 @@ class OutputFile {
     OutputFile(const OutputFile&) = delete;
     OutputFile& operator=(const OutputFile&) = delete;
 
+    // The raster as write_ppm writes it.
     void write(const Raster& raster);
+    // An encoded image file (encode_image in rt/image_io.h).
+    void write_bytes(std::string_view bytes);
 
   private:
     std::string path_;
