@@ -5,7 +5,8 @@
 
 #include "rt/cli.h"
 #include "rt/error.h"
-#include "rt/ppm.h"
+#include "rt/interrupt.h"
+#include "rt/output_file.h"
 #include "rt/reader.h"
 #include "rt/trace.h"
 
@@ -16,7 +17,9 @@ constexpr int kExitError = 1;  // a scene, texture or input/output error
 constexpr int kExitUsage = 2;  // the command line made no sense
 
 int run(const rt::CommandLine& cl) {
-    const rt::Scene scene = rt::read_scene_file(cl.input, rt::worker_threads(cl.render.threads));
+    std::vector<std::filesystem::path> textures;
+    const rt::Scene scene =
+        rt::read_scene_file(cl.input, rt::worker_threads(cl.render.threads), &textures);
     if (cl.read_only) {
         const std::string name = cl.input == "-" ? "<stdin>" : cl.input;
         std::cout << name << ": " << scene.objects.size() << " objects, " << scene.lights.size()
@@ -27,9 +30,12 @@ int run(const rt::CommandLine& cl) {
         std::cout << "\n";
         return kExitOk;
     }
-    // The output file is claimed before rendering, so a bad path fails fast, and is only
-    // replaced once the whole image has been written.
-    rt::OutputFile output(cl.output);
+    // The output file is checked and claimed before rendering, so a bad path fails fast, and
+    // is only replaced once the whole image has been written. The files the render reads are
+    // never written over.
+    std::vector<std::filesystem::path> inputs = textures;
+    inputs.insert(inputs.begin(), cl.input == "-" ? std::string() : cl.input);  // scene first
+    rt::OutputFile output(cl.output, inputs);
     output.write(rt::render(scene, cl.render));
     return kExitOk;
 }
@@ -52,6 +58,7 @@ int main(int argc, char** argv) {
         std::cout << "rt " RT_VERSION "\n";
         return kExitOk;
     }
+    rt::interrupt::install_handlers();
     try {
         return run(cl);
     } catch (const rt::Error& e) {

@@ -1,9 +1,11 @@
 #include "rt/reader.h"
 
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 
@@ -155,6 +157,7 @@ std::shared_ptr<const Image> SceneReader::texture(std::string_view what) {
     try {
         auto image = std::make_shared<const Image>(read_ppm(resolved));
         textures_.emplace(resolved, image);
+        texture_paths_.push_back(resolved);
         return image;
     } catch (const Error& e) {
         std::string message = "cannot read texture '" + written + "': " + e.what();
@@ -268,22 +271,24 @@ Scene SceneReader::read_scene() {
 }
 
 Scene read_scene(std::istream& in, const std::string& name, const std::filesystem::path& base_dir,
-                 int threads) {
+                 int threads, std::vector<std::filesystem::path>* textures) {
     SceneReader reader(in, name, base_dir, threads);
     Scene scene = reader.read_scene();
+    if (textures != nullptr) *textures = reader.texture_paths();
     scene.build_index(threads);
     return scene;
 }
 
-Scene read_scene_file(const std::string& path, int threads) {
+Scene read_scene_file(const std::string& path, int threads,
+                      std::vector<std::filesystem::path>* textures) {
     if (path == "-")
-        return read_scene(std::cin, "<stdin>", std::filesystem::current_path(), threads);
+        return read_scene(std::cin, "<stdin>", std::filesystem::current_path(), threads, textures);
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
         throw Error(path + ": is a directory, not a scene file");
     std::ifstream file(path, std::ios::binary);
-    if (!file) throw Error(path + ": cannot open scene file");
-    return read_scene(file, path, std::filesystem::path(path).parent_path(), threads);
+    if (!file) throw Error(path + ": cannot open scene file: " + std::strerror(errno));
+    return read_scene(file, path, std::filesystem::path(path).parent_path(), threads, textures);
 }
 
 }  // namespace rt

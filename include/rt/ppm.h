@@ -17,24 +17,6 @@ std::uint8_t to_byte(double c);
 // Writes the raster as binary PPM (P6, maxval 255).
 void write_ppm(std::ostream& out, const Raster& raster);
 
-// Writes to a temporary file beside `path` and renames it over `path` only once everything is
-// written, so a failed render never leaves a damaged or missing image behind. "-" writes to
-// standard output. Throws rt::Error on failure.
-class OutputFile {
-  public:
-    explicit OutputFile(std::string path);
-    ~OutputFile();
-    OutputFile(const OutputFile&) = delete;
-    OutputFile& operator=(const OutputFile&) = delete;
-
-    void write(const Raster& raster);
-
-  private:
-    std::string path_;
-    std::filesystem::path temporary_;
-    bool committed_ = false;
-};
-
 // An image read from a PPM file, components scaled to [0, 1], rows from the top.
 struct Image {
     int width = 0;
