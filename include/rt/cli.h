@@ -12,6 +12,7 @@ struct CommandLine {
     RenderOptions render;
     std::string input = "-";   // the scene; "-" is standard input
     std::string output = "-";  // the image; "-" is standard output
+    std::string depfile;       // -M: where to write a make rule; empty for none
     bool read_only = false;
     bool help = false;
     bool version = false;
