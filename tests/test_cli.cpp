@@ -11,10 +11,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kScene =
-    "102 0 0 5 0 0 0 1 0 0 0 1 0 8 6\n"
-    "101 2 3 4 20 20 20\n103 .1 .1 .1\n"
-    "1 1 0 0 0 100 1 .5 .25 .5 10 .8 0 1\n";
+const std::string kScene = kSmallScene;
 
 constexpr const char* kKeep = "previous image, must survive";
 

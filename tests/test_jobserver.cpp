@@ -18,10 +18,7 @@ using Kind = rt::JobserverAuth::Kind;
 
 namespace {
 
-const std::string kScene =
-    "102 0 0 5 0 0 0 1 0 0 0 1 0 8 6\n"
-    "101 2 3 4 20 20 20\n103 .1 .1 .1\n"
-    "1 1 0 0 0 100 1 .5 .25 .5 10 .8 0 1\n";
+const std::string kScene = kSmallScene;
 
 // A pipe loaded with tokens, as make makes it; its descriptors are inherited by children.
 struct TokenPipe {
@@ -175,9 +172,7 @@ TEST(rt_takes_tokens_and_gives_every_one_back) {
     CHECK_EQ(r.status, 0);
     CHECK(!fs::exists(dir / "out.ppm"));
     // A signal mid-render.
-    write_file(dir / "slow.in",
-               "102 0 0 5 0 0 0 1 0 0 0 1 0 1000 1000\n"
-               "101 2 3 4 20 20 20\n1 1 0 0 0 100 1 .5 .25 .5 10 .8 .5 1.5\n");
+    write_file(dir / "slow.in", kSlowScene);
     options.env[0] = "MAKEFLAGS=" + pipe.makeflags();
     const pid_t pid = spawn_rt(dir, {"-s", "8", "slow.in", "-o", "slow.ppm"}, options);
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
@@ -243,7 +238,7 @@ TEST(a_real_make_with_its_jobserver) {
     if (std::system("command -v make >/dev/null 2>&1") != 0) return;  // make is not installed
     const fs::path dir = work_dir("make");
     write_file(dir / "tex.ppm", "P3\n1 1\n255\n1 2 3\n");
-    for (int i = 1; i <= 4; ++i) write_file(dir / ("f" + std::to_string(i) + ".in"), kScene);
+    for (int i = 1; i <= 4; ++i) write_file(dir / join("f", i, ".in"), kScene);
     write_file(dir / "f4.in",
                kScene + "1 .5 0 0 0 108 0 0 0 1 0 0 0 1 0 tex.ppm 100 1 1 1 .5 10 0 0 1\n");
     write_file(dir / "Makefile",
@@ -259,7 +254,7 @@ TEST(a_real_make_with_its_jobserver) {
     CHECK(err.find("INTERNAL") == std::string::npos);
     CHECK(err.find("warning") == std::string::npos);
     CHECK_CONTAINS(err, "jobserver tokens");
-    for (int i = 1; i <= 4; ++i) CHECK(fs::exists(dir / ("f" + std::to_string(i) + ".ppm")));
+    for (int i = 1; i <= 4; ++i) CHECK(fs::exists(dir / join("f", i, ".ppm")));
     // A newer texture: only f4 is made again.
     std::this_thread::sleep_for(std::chrono::milliseconds(1100));
     write_file(dir / "tex.ppm", "P3\n1 1\n255\n3 2 1\n");

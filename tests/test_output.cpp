@@ -19,10 +19,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kScene =
-    "102 0 0 5 0 0 0 1 0 0 0 1 0 8 6\n"
-    "101 2 3 4 20 20 20\n103 .1 .1 .1\n"
-    "1 1 0 0 0 100 1 .5 .25 .5 10 .8 0 1\n";
+const std::string kScene = kSmallScene;
 constexpr std::size_t kImageSize = 11 + 8 * 6 * 3;
 constexpr const char* kKeep = "previous image, must survive";
 
@@ -316,10 +313,7 @@ TEST(output_file_as_a_library) {
 
 TEST(signals_remove_the_temporary_file_and_end_rt_by_the_signal) {
     const fs::path dir = scene_dir("signals");
-    // Slow enough to be caught mid-render: 1000 x 1000 pixels, 8 x 8 rays each, one thread.
-    write_file(dir / "slow.in",
-               "102 0 0 5 0 0 0 1 0 0 0 1 0 1000 1000\n"
-               "101 2 3 4 20 20 20\n1 1 0 0 0 100 1 .5 .25 .5 10 .8 .5 1.5\n");
+    write_file(dir / "slow.in", kSlowScene);
     for (const int sig : {SIGINT, SIGTERM, SIGHUP}) {
         write_file(dir / "out.ppm", kKeep);
         const pid_t pid = spawn_rt(dir, {"-j", "1", "-s", "8", "slow.in", "-o", "out.ppm"});
