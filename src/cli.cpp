@@ -17,23 +17,36 @@ constexpr int kMaxDepthOption = 1000;
 constexpr int kMaxSamplesOption = 64;
 constexpr int kMaxThreadsOption = 1024;
 
+// The text of a number without the leading '+' a user may write (+5); from_chars takes none.
+std::string_view unsigned_text(const std::string& text) {
+    std::string_view view(text);
+    if (view.size() > 1 && view[0] == '+' && ((view[1] >= '0' && view[1] <= '9') || view[1] == '.'))
+        view.remove_prefix(1);
+    return view;
+}
+
 int parse_int(const std::string& option, const std::string& text, int min, int max) {
-    int value = 0;
-    const char* end = text.data() + text.size();
-    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-    if (ec != std::errc() || ptr != end || text.empty())
+    const std::string_view digits = unsigned_text(text);
+    long long value = 0;
+    const char* end = digits.data() + digits.size();
+    const auto [ptr, ec] = std::from_chars(digits.data(), end, value);
+    const std::string range = option + " " + text + " is out of range (" + std::to_string(min) +
+                              " to " + std::to_string(max) + ")";
+    if (ec == std::errc::result_out_of_range && ptr == end) throw UsageError{range};
+    if (ec != std::errc() || ptr != end || digits.empty())
         throw UsageError{option + " expects a whole number, got '" + text + "'"};
-    if (value < min || value > max)
-        throw UsageError{option + " must be between " + std::to_string(min) + " and " +
-                         std::to_string(max) + ", got " + text};
-    return value;
+    if (value < min || value > max) throw UsageError{range};
+    return static_cast<int>(value);
 }
 
 double parse_double(const std::string& option, const std::string& text) {
+    const std::string_view digits = unsigned_text(text);
     double value = 0;
-    const char* end = text.data() + text.size();
-    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-    if (ec != std::errc() || ptr != end || text.empty() || !std::isfinite(value) || value < 0)
+    const char* end = digits.data() + digits.size();
+    const auto [ptr, ec] = std::from_chars(digits.data(), end, value);
+    if (ec == std::errc::result_out_of_range && ptr == end)
+        throw UsageError{option + " " + text + " is out of range (a number >= 0)"};
+    if (ec != std::errc() || ptr != end || digits.empty() || !std::isfinite(value) || value < 0)
         throw UsageError{option + " expects a number >= 0, got '" + text + "'"};
     return value;
 }
@@ -109,18 +122,28 @@ RenderMode parse_mode(const std::string& text) {
     throw UsageError{"-m expects trace, depth, colour or normal, got '" + text + "'"};
 }
 
+void set_input(CommandLine& cl, bool& have_input, const std::string& arg) {
+    if (have_input)
+        throw UsageError{"more than one scene file given ('" + cl.input + "' and '" + arg + "')"};
+    cl.input = arg;
+    have_input = true;
+}
+
 }  // namespace
 
 const char* usage_text() {
-    return R"(usage: rt [options] [scene]
+    return R"(usage: rt [options] [--] [scene]
 
 Renders a scene in rt's numeric scene format to a PPM, PNG or PFM image.
 The scene is read from the file named, or from standard input when it is
 '-' or absent.
 
 options:
-  -o, --output FILE   write the image to FILE ('-', the default: standard output);
-                      its extension (.ppm, .png, .pfm) chooses the format
+  -o, --output FILE   write the image to FILE ('-', the default: standard output,
+                      refused when it is a terminal); its extension (.ppm, .png,
+                      .pfm) chooses the format. A file is replaced only once the
+                      image is complete; devices, FIFOs and sockets are written
+                      in place (-o /dev/null is safe)
   -f, --format FMT    ppm, png or pfm, whatever FILE is called (default: from
                       FILE's extension; ppm for standard output or no extension)
       --bits N        8 (default) or 16 bits per sample (PPM and PNG)
@@ -129,6 +152,8 @@ options:
                       number G > 0 for c^(1/G); PFM is always linear
       --no-metadata   do not record rt's version, the scene and the options in
                       the image (a PPM comment or a PNG text chunk)
+  -M, --depend FILE   also write a make rule to FILE, once the image is written:
+                      the image depends on the scene and its textures
   -d, --depth N       maximum recursion depth for reflected and refracted rays
                       (default 7; 0 traces no secondary rays)
   -w, --weight W      do not trace rays whose weight is below W (default 0.01)
@@ -139,7 +164,8 @@ options:
                       (-s N, default 3) only where a pixel differs from a
                       neighbour by more than T in some colour component
                       (compared clamped to [0, 1])
-  -j, --threads N     worker threads (default: one per hardware thread);
+  -j, --threads N     worker threads (default: one per hardware thread, or under
+                      make -jN one plus the job slots free at the start);
                       the image is the same whatever N is
       --size WxH      render W x H pixels instead of the viewer's resolution; the
                       field of view stays (rt warns when pixels become non-square)
@@ -159,8 +185,16 @@ options:
                       using the bounding volume hierarchy (same image, slower)
   -h, --help          print this help and exit
   -V, --version       print the version and exit
+  --                  end of options: the next argument is the scene, even
+                      one that starts with '-'
 
-exit status: 0 success, 1 scene or input/output error, 2 usage error
+A number may be written with a leading '+'.
+
+environment: MAKEFLAGS (GNU make's jobserver: see -j), RT_DEBUG=threads (print
+the thread count and jobserver tokens on standard error)
+
+exit status: 0 success, 1 scene or input/output error, 2 usage error; SIGINT,
+SIGTERM and SIGHUP remove the temporary file and end rt as killed by them
 )";
 }
 
@@ -170,8 +204,18 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     bool have_samples = false;
     std::optional<ImageFormat> format;
     bool have_bits = false;
+    bool options_ended = false;
     for (std::size_t i = 0; i < args.size(); ++i) {
         std::string arg = args[i];
+        // After "--" every argument is a scene name, even one that starts with '-'.
+        if (!options_ended && arg == "--") {
+            options_ended = true;
+            continue;
+        }
+        if (options_ended) {
+            set_input(cl, have_input, arg);
+            continue;
+        }
         std::string value;
         bool has_inline_value = false;
         // --name=value and -dVALUE forms.
@@ -182,7 +226,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
                 has_inline_value = true;
             }
         } else if (arg.size() > 2 && arg[0] == '-' &&
-                   std::string_view("dwmsajof").find(arg[1]) != std::string_view::npos) {
+                   std::string_view("dwmsajofM").find(arg[1]) != std::string_view::npos) {
             value = arg.substr(2);
             arg.resize(2);
             has_inline_value = true;
@@ -221,6 +265,9 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
             cl.image.gamma = *gamma;
         } else if (arg == "--no-metadata") {
             flag(cl.metadata, false);
+        } else if (arg == "-M" || arg == "--depend") {
+            cl.depfile = take_value();
+            if (cl.depfile.empty() || cl.depfile == "-") throw UsageError{"-M needs a file name"};
         } else if (arg == "-d" || arg == "--depth") {
             r.max_depth = parse_int("-d", take_value(), 0, kMaxDepthOption);
         } else if (arg == "-w" || arg == "--weight") {
@@ -265,12 +312,13 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
         } else if (arg.size() > 1 && arg[0] == '-') {
             throw UsageError{"unknown option '" + arg + "'"};
         } else {
-            if (have_input)
-                throw UsageError{"more than one scene file given ('" + cl.input + "' and '" + arg +
-                                 "')"};
-            cl.input = arg;
-            have_input = true;
+            set_input(cl, have_input, arg);
         }
+    }
+    if (!cl.depfile.empty()) {
+        if (cl.read_only) throw UsageError{"-M writes a rule for the image, and -r writes none"};
+        if (cl.output == "-") throw UsageError{"-M needs -o FILE: the rule's target is the image"};
+        if (cl.depfile == cl.output) throw UsageError{"-M and -o name the same file"};
     }
     if (cl.render.adaptive_threshold && !have_samples) cl.render.samples = kDefaultAdaptiveSamples;
     cl.image.format = format ? *format : format_of_output(cl.output);

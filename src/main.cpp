@@ -3,17 +3,26 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <iostream>
 #include <new>
 #include <optional>
+#include <sstream>
+#include <thread>
 
 #include "rt/cli.h"
+#include "rt/depfile.h"
 #include "rt/error.h"
 #include "rt/image_io.h"
-#include "rt/ppm.h"
+#include "rt/interrupt.h"
+#include "rt/jobserver.h"
+#include "rt/output_file.h"
 #include "rt/progress.h"
 #include "rt/reader.h"
 #include "rt/statistics.h"
@@ -49,26 +58,74 @@ void apply_size(rt::Viewer& viewer, const rt::ImageSize& size, bool quiet) {
                   << ", or change the viewer's vectors\n";
 }
 
-int run(const rt::CommandLine& cl) {
+// Text for standard output (--help, --version, -r): a full disk or a closed pipe is an error,
+// not a silent success.
+int print(std::string_view text) {
+    errno = 0;
+    std::cout << text;
+    std::cout.flush();
+    if (std::cout && std::fflush(stdout) == 0 && !std::ferror(stdout)) return kExitOk;
+    const int error = errno;
+    std::cerr << "rt: cannot write to standard output" << (error != 0 ? ": " : "")
+              << (error != 0 ? std::strerror(error) : "") << "\n";
+    return kExitError;
+}
+
+// The thread count: -j N when given; else, under make's jobserver, one plus the tokens free
+// now (no more than the hardware has); else one per hardware thread.
+int choose_threads(const rt::CommandLine& cl, const rt::JobserverAuth& auth,
+                   std::optional<rt::JobserverClient>& jobs) {
+    if (cl.render.threads > 0) return cl.render.threads;
+    const int hardware = rt::worker_threads(0);
+    if (auth.kind == rt::JobserverAuth::Kind::none) return hardware;
+    if (auth.kind == rt::JobserverAuth::Kind::disabled) return 1;
+    jobs.emplace(auth);
+    if (!jobs->usable()) {
+        std::cerr << "rt: warning: " << jobs->problem() << "; rendering on 1 thread (-j N sets "
+                  << "the number)\n";
+        return 1;
+    }
+    return 1 + jobs->acquire(hardware - 1);
+}
+
+int run(const rt::CommandLine& cl, int threads) {
     rt::RunStatistics statistics;
-    const int threads = rt::worker_threads(cl.render.threads);
-    rt::Scene scene = rt::read_scene_file(cl.input, threads, &statistics.times);
+    std::vector<std::filesystem::path> textures;
+    rt::Scene scene = rt::read_scene_file(cl.input, threads, &statistics.times, &textures);
     if (cl.size) apply_size(scene.viewer, *cl.size, cl.quiet);
     if (cl.read_only) {
+        std::ostringstream summary;
         const std::string name = cl.input == "-" ? "<stdin>" : cl.input;
-        std::cout << name << ": " << scene.objects.size() << " objects, " << scene.lights.size()
-                  << " lights, " << scene.viewer.xres << "x" << scene.viewer.yres;
+        summary << name << ": " << scene.objects.size() << " objects, " << scene.lights.size()
+                << " lights, " << scene.viewer.xres << "x" << scene.viewer.yres;
         if (const std::size_t n = scene.skipped_triangles; n != 0)
-            std::cout << ", " << n << " zero-area " << (n == 1 ? "triangle" : "triangles")
-                      << " skipped";
-        std::cout << "\n";
-        return kExitOk;
+            summary << ", " << n << " zero-area " << (n == 1 ? "triangle" : "triangles")
+                    << " skipped";
+        summary << "\n";
+        return print(summary.view());
     }
-    // The output file is claimed before rendering, so a bad path fails fast, and is only
-    // replaced once the whole image has been written.
+    // The output files are checked and claimed before rendering, so a bad path fails fast,
+    // and are only replaced once complete. The files the render reads are never written over.
     rt::ImageEncoding encoding = cl.image;
     encoding.metadata = rt::image_metadata(cl);
-    rt::OutputFile output(cl.output);
+    std::vector<std::filesystem::path> inputs = textures;
+    inputs.insert(inputs.begin(), cl.input == "-" ? std::string() : cl.input);  // scene first
+    rt::OutputFile output(cl.output, inputs);
+    std::optional<rt::OutputFile> depfile;
+    std::string rule;
+    if (!cl.depfile.empty()) {
+        std::vector<std::string> dependencies;
+        if (cl.input != "-") dependencies.push_back(cl.input);
+        for (const auto& texture : textures) dependencies.push_back(texture.string());
+        rule = rt::make_rule(cl.output, dependencies);
+        std::error_code ec;
+        if (std::filesystem::weakly_canonical(cl.depfile, ec) ==
+            std::filesystem::weakly_canonical(cl.output, ec))
+            throw rt::Error(cl.depfile + ": -M and -o name the same file");
+        depfile.emplace(cl.depfile, inputs, "the dependency rule");
+    }
+    rt::RenderOptions options = cl.render;
+    options.threads = threads;
 
     rt::RenderProgress progress;
     std::optional<rt::ProgressDisplay> display;
@@ -78,13 +135,15 @@ int run(const rt::CommandLine& cl) {
                                                    : rt::ProgressDisplay::Style::lines,
                         std::cerr);
     auto start = Clock::now();
-    const rt::Raster image = rt::render(scene, cl.render, &statistics.rays, &progress);
+    const rt::Raster image = rt::render(scene, options, &statistics.rays, &progress);
     statistics.times.render = seconds_since(start);
     if (display) display->finish();
 
     start = Clock::now();
     output.write_bytes(rt::encode_image(image, encoding));
     statistics.times.write = seconds_since(start);
+    // Written only once the image is: a rule for an image that failed would be a lie.
+    if (depfile) depfile->write_bytes(rule);
     if (cl.stats) {
         statistics.threads = std::clamp(threads, 1, scene.viewer.yres);
         statistics.objects = scene.objects.size();
@@ -105,16 +164,22 @@ int main(int argc, char** argv) {
         std::cerr << "rt: " << e.message << "\nTry 'rt --help' for more information.\n";
         return kExitUsage;
     }
-    if (cl.help) {
-        std::cout << rt::usage_text();
-        return kExitOk;
-    }
-    if (cl.version) {
-        std::cout << "rt " RT_VERSION "\n";
-        return kExitOk;
-    }
+    if (cl.help) return print(rt::usage_text());
+    if (cl.version) return print("rt " RT_VERSION "\n");
+    // The jobserver is read before rt opens any file (see JobserverClient).
+    const char* makeflags = std::getenv("MAKEFLAGS");
+    const rt::JobserverAuth auth = rt::parse_makeflags(makeflags != nullptr ? makeflags : "");
+    if (auth.dry_run) return kExitOk;  // make -n runs '+' lines too: they must do nothing
+    rt::interrupt::install_handlers();
+    // Declared before anything that can fail, so its tokens go back on every exit path.
+    std::optional<rt::JobserverClient> jobs;
     try {
-        return run(cl);
+        const int threads = choose_threads(cl, auth, jobs);
+        if (const char* debug = std::getenv("RT_DEBUG");
+            debug != nullptr && std::strstr(debug, "threads") != nullptr)
+            std::cerr << "rt: " << threads << (threads == 1 ? " thread" : " threads") << ", "
+                      << rt::interrupt::tokens_held() << " jobserver tokens\n";
+        return run(cl, threads);
     } catch (const rt::Error& e) {
         std::cerr << e.what() << "\n";
     } catch (const std::bad_alloc&) {

@@ -4,9 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <iostream>
 #include <optional>
-#include <random>
 
 #include "rt/error.h"
 #include "rt/image_io.h"
@@ -21,48 +19,6 @@ std::uint8_t to_byte(double c) {
 
 void write_ppm(std::ostream& out, const Raster& raster) {
     out << encode_image(raster, ImageEncoding{});
-}
-
-OutputFile::OutputFile(std::string path) : path_(std::move(path)) {
-    if (path_ == "-") return;
-    std::error_code ec;
-    if (std::filesystem::is_directory(path_, ec))
-        throw Error(path_ + ": cannot write the image: it is a directory");
-    // Create the temporary file now, so an unwritable place is reported before rendering.
-    std::random_device random;
-    const auto tag = std::to_string(random()) + std::to_string(random());
-    temporary_ = path_ + ".tmp-" + tag;
-    std::ofstream probe(temporary_, std::ios::binary);
-    if (!probe) throw Error(path_ + ": cannot write the image: " + std::strerror(errno));
-}
-
-OutputFile::~OutputFile() {
-    if (!committed_ && !temporary_.empty()) {
-        std::error_code ec;
-        std::filesystem::remove(temporary_, ec);
-    }
-}
-
-void OutputFile::write(const Raster& raster) { write_bytes(encode_image(raster, ImageEncoding{})); }
-
-void OutputFile::write_bytes(std::string_view bytes) {
-    if (path_ == "-") {
-        std::cout.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-        std::cout.flush();
-        if (!std::cout) throw Error("<stdout>: cannot write the image");
-        committed_ = true;
-        return;
-    }
-    {
-        std::ofstream out(temporary_, std::ios::binary | std::ios::trunc);
-        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-        out.close();
-        if (!out) throw Error(path_ + ": cannot write the image: " + std::strerror(errno));
-    }
-    std::error_code ec;
-    std::filesystem::rename(temporary_, path_, ec);
-    if (ec) throw Error(path_ + ": cannot write the image: " + ec.message());
-    committed_ = true;
 }
 
 namespace {

@@ -1,10 +1,12 @@
 #include "rt/reader.h"
 
+#include <cerrno>
 #include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 
@@ -157,6 +159,7 @@ std::shared_ptr<const Image> SceneReader::texture(std::string_view what) {
     try {
         auto image = std::make_shared<const Image>(read_ppm(resolved));
         textures_.emplace(resolved, image);
+        texture_paths_.push_back(resolved);
         return image;
     } catch (const Error& e) {
         std::string message = "cannot read texture '" + written + "': " + e.what();
@@ -270,11 +273,13 @@ Scene SceneReader::read_scene() {
 }
 
 Scene read_scene(std::istream& in, const std::string& name, const std::filesystem::path& base_dir,
-                 int threads, StageTimes* times) {
+                 int threads, StageTimes* times,
+                 std::vector<std::filesystem::path>* textures) {
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
     SceneReader reader(in, name, base_dir, threads);
     Scene scene = reader.read_scene();
+    if (textures != nullptr) *textures = reader.texture_paths();
     const auto read = Clock::now();
     scene.build_index(threads);
     if (times != nullptr) {
@@ -284,15 +289,18 @@ Scene read_scene(std::istream& in, const std::string& name, const std::filesyste
     return scene;
 }
 
-Scene read_scene_file(const std::string& path, int threads, StageTimes* times) {
+Scene read_scene_file(const std::string& path, int threads, StageTimes* times,
+                      std::vector<std::filesystem::path>* textures) {
     if (path == "-")
-        return read_scene(std::cin, "<stdin>", std::filesystem::current_path(), threads, times);
+        return read_scene(std::cin, "<stdin>", std::filesystem::current_path(), threads, times,
+                          textures);
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
         throw Error(path + ": is a directory, not a scene file");
     std::ifstream file(path, std::ios::binary);
-    if (!file) throw Error(path + ": cannot open scene file");
-    return read_scene(file, path, std::filesystem::path(path).parent_path(), threads, times);
+    if (!file) throw Error(path + ": cannot open scene file: " + std::strerror(errno));
+    return read_scene(file, path, std::filesystem::path(path).parent_path(), threads, times,
+                      textures);
 }
 
 }  // namespace rt

@@ -9,6 +9,17 @@
 
 namespace rt_test {
 
+// A small scene (8 x 6 pixels, one sphere, one light) for tests of the command line.
+inline const std::string kSmallScene =
+    "102 0 0 5 0 0 0 1 0 0 0 1 0 8 6\n"
+    "101 2 3 4 20 20 20\n103 .1 .1 .1\n"
+    "1 1 0 0 0 100 1 .5 .25 .5 10 .8 0 1\n";
+
+// A scene slow enough to be caught mid-render with -s 8 (1000 x 1000 pixels, 64 rays each).
+inline const std::string kSlowScene =
+    "102 0 0 5 0 0 0 1 0 0 0 1 0 1000 1000\n"
+    "101 2 3 4 20 20 20\n1 1 0 0 0 100 1 .5 .25 .5 10 .8 .5 1.5\n";
+
 struct RunResult {
     int status = -1;
     std::string out;

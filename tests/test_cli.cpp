@@ -3,6 +3,7 @@
 #include "check.h"
 #include "cli_util.h"
 #include "error_cases.h"
+#include "process_util.h"
 #include "rt/cli.h"
 
 using namespace rt_test;
@@ -10,10 +11,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kScene =
-    "102 0 0 5 0 0 0 1 0 0 0 1 0 8 6\n"
-    "101 2 3 4 20 20 20\n103 .1 .1 .1\n"
-    "1 1 0 0 0 100 1 .5 .25 .5 10 .8 0 1\n";
+const std::string kScene = kSmallScene;
 
 constexpr const char* kKeep = "previous image, must survive";
 
@@ -102,7 +100,7 @@ TEST(io_errors_exit_1) {
     write_file(dir / "scene.in", kScene);
     RunResult r = run_rt(dir, "missing.in -o out.ppm");
     CHECK_EQ(r.status, 1);
-    CHECK_CONTAINS(r.err, "missing.in: cannot open scene file");
+    CHECK_CONTAINS(r.err, "missing.in: cannot open scene file: No such file or directory");
     CHECK(!fs::exists(dir / "out.ppm"));
     r = run_rt(dir, "scene.in -o no/such/dir/out.ppm");
     CHECK_EQ(r.status, 1);
@@ -141,7 +139,8 @@ TEST(help_and_version) {
     const fs::path dir = work_dir("help");
     RunResult r = run_rt(dir, "--help");
     CHECK_EQ(r.status, 0);
-    CHECK_CONTAINS(r.out, "usage: rt [options] [scene]");
+    CHECK_CONTAINS(r.out, "usage: rt [options] [--] [scene]");
+    CHECK_CONTAINS(r.out, "-M, --depend FILE");
     CHECK_CONTAINS(r.out, "--no-refraction");
     CHECK_CONTAINS(r.out, "-a, --adaptive T");
     r = run_rt(dir, "--version");
@@ -209,4 +208,50 @@ TEST(adaptive_option) {
     CHECK_EQ(run_rt(dir, "-a 0.05 -j 3 scene.in -o j3.ppm").status, 0);
     CHECK(read_file(dir / "j1.ppm") == read_file(dir / "j3.ppm"));
     CHECK(read_file(dir / "j1.ppm") != read_file(dir / "one.ppm"));
+}
+
+TEST(conventions) {
+    const fs::path dir = work_dir("conventions");
+    write_file(dir / "-x.in", kScene);
+    // "--" ends the options: a scene whose name starts with '-'.
+    RunResult r = run_rt(dir, "-r -- -x.in");
+    CHECK_EQ(r.status, 0);
+    CHECK_EQ(r.out, std::string("-x.in: 1 objects, 1 lights, 8x6\n"));
+    CHECK_EQ(run_rt(dir, "-r -x.in").status, 2);
+    CHECK_EQ(run_rt(dir, "-r -- -x.in extra").status, 2);
+    // A leading '+' on numbers.
+    const rt::CommandLine cl =
+        rt::parse_command_line({"-d", "+5", "-j+2", "--samples=+3", "-w", "+0.5", "-a", "+.1"});
+    CHECK_EQ(cl.render.max_depth, 5);
+    CHECK_EQ(cl.render.threads, 2);
+    CHECK_EQ(cl.render.samples, 3);
+    CHECK_EQ(cl.render.min_weight, 0.5);
+    CHECK(cl.render.adaptive_threshold == 0.1);
+    // Range errors say so, whatever the size of the number.
+    for (const char* args : {"-d 1001", "-d -1", "-j 99999999999999999999", "-s 65", "-s 0"}) {
+        r = run_rt(dir, std::string(args) + " -r -- -x.in");
+        CHECK_EQ(r.status, 2);
+        CHECK_CONTAINS(r.err, "is out of range");
+    }
+    CHECK_CONTAINS(run_rt(dir, "-d 1001").err, "rt: -d 1001 is out of range (0 to 1000)");
+    CHECK_CONTAINS(run_rt(dir, "-d +x").err, "-d expects a whole number, got '+x'");
+    CHECK_CONTAINS(run_rt(dir, "-d ++5").err, "-d expects a whole number, got '++5'");
+}
+
+TEST(text_that_cannot_be_written_is_an_error) {
+    // /dev/full takes no data (ENOSPC). It is only a redirection here, never an -o target.
+    if (!fs::exists("/dev/full")) return;
+    const fs::path dir = work_dir("full");
+    write_file(dir / "scene.in", kScene);
+    const int full = ::open("/dev/full", O_WRONLY);
+    for (const std::vector<std::string>& args :
+         {std::vector<std::string>{"--help"}, {"--version"}, {"-r", "scene.in"}}) {
+        const RunResult r = run_rt_args(dir, args, stdout_to(full));
+        CHECK_EQ(r.status, 1);
+        CHECK_CONTAINS(r.err, "rt: cannot write to standard output: No space left on device");
+    }
+    const RunResult r = run_rt_args(dir, {"scene.in"}, stdout_to(full));
+    CHECK_EQ(r.status, 1);
+    CHECK_CONTAINS(r.err, "<stdout>: cannot write the image: No space left on device");
+    ::close(full);
 }

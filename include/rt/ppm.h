@@ -19,27 +19,6 @@ std::uint8_t to_byte(double c);
 // default encoding.
 void write_ppm(std::ostream& out, const Raster& raster);
 
-// Writes to a temporary file beside `path` and renames it over `path` only once everything is
-// written, so a failed render never leaves a damaged or missing image behind. "-" writes to
-// standard output. Throws rt::Error on failure.
-class OutputFile {
-  public:
-    explicit OutputFile(std::string path);
-    ~OutputFile();
-    OutputFile(const OutputFile&) = delete;
-    OutputFile& operator=(const OutputFile&) = delete;
-
-    // The raster as write_ppm writes it.
-    void write(const Raster& raster);
-    // An encoded image file (encode_image in rt/image_io.h).
-    void write_bytes(std::string_view bytes);
-
-  private:
-    std::string path_;
-    std::filesystem::path temporary_;
-    bool committed_ = false;
-};
-
 // An image read from a PPM file, components scaled to [0, 1], rows from the top.
 struct Image {
     int width = 0;

@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "rt/lexer.h"
 #include "rt/light.h"
@@ -52,6 +53,9 @@ class SceneReader {
     // Reads a texture path and loads the PPM it names (relative to the scene's directory).
     // Each file is loaded once per scene however many surfaces name it.
     std::shared_ptr<const Image> texture(std::string_view what);
+    // The texture files loaded so far, each once, in the order first named (as resolved
+    // against the scene's directory): what an image made from the scene depends on.
+    const std::vector<std::filesystem::path>& texture_paths() const { return texture_paths_; }
 
     // Nested objects: an inner primitive (ID and numbers, no surface), a surface (ID and
     // numbers, or 106 for the current default), a positioned light (ID and numbers).
@@ -91,6 +95,7 @@ class SceneReader {
     std::filesystem::path base_dir_;
     SurfacePtr default_surface_;
     std::map<std::filesystem::path, std::shared_ptr<const Image>> textures_;
+    std::vector<std::filesystem::path> texture_paths_;
     int depth_ = 0;
     std::size_t skipped_triangles_ = 0;
     int threads_ = 1;
@@ -103,10 +108,13 @@ struct StageTimes;
 
 // Convenience wrappers: read a whole scene from a stream or a file ("-" for stdin) and build
 // its hierarchy on up to `threads` threads. With `times`, the seconds spent reading and
-// building are stored in it.
+// building are stored in it; with `textures`, the texture paths the scene loaded
+// (SceneReader::texture_paths()).
 Scene read_scene(std::istream& in, const std::string& name,
                  const std::filesystem::path& base_dir = {}, int threads = 1,
-                 StageTimes* times = nullptr);
-Scene read_scene_file(const std::string& path, int threads = 1, StageTimes* times = nullptr);
+                 StageTimes* times = nullptr,
+                 std::vector<std::filesystem::path>* textures = nullptr);
+Scene read_scene_file(const std::string& path, int threads = 1, StageTimes* times = nullptr,
+                      std::vector<std::filesystem::path>* textures = nullptr);
 
 }  // namespace rt

@@ -1,0 +1,42 @@
+// What rt must undo when SIGINT, SIGTERM or SIGHUP ends it early: temporary files to remove
+// and GNU make jobserver tokens to give back. The signal handler reads only what is
+// registered here, with async-signal-safe calls, then re-raises the signal so that rt ends
+// as killed by it (make and shells see that and stop).
+#pragma once
+
+#include <csignal>
+#include <string>
+
+namespace rt::interrupt {
+
+// Installs the handler for SIGINT, SIGTERM and SIGHUP (which print "rt: interrupted") and
+// SIGPIPE (silent), leaving alone any of them that the parent set to be ignored (nohup).
+void install_handlers();
+
+// Registers a file for the handler to unlink; returns a slot for forget_temporary(), or -1
+// when the path is too long to hold or every slot is taken (nothing is registered then).
+int register_temporary(const std::string& path);
+// The file was renamed or removed: the handler must leave that name alone.
+void forget_temporary(int slot);
+
+// Jobserver tokens taken: the handler, or give_back_tokens(), writes them back to fd.
+inline constexpr int kMaxTokens = 1024;
+void hold_tokens(int fd, const char* tokens, int count);
+// Writes every held token back once (async-signal-safe); returns how many it wrote.
+int give_back_tokens();
+int tokens_held();
+
+// Blocks the handled signals in this thread while it lives, so that a token read or a file
+// created is registered before a signal can end rt. (Only the main thread runs then.)
+class SignalsBlocked {
+  public:
+    SignalsBlocked();
+    ~SignalsBlocked();
+    SignalsBlocked(const SignalsBlocked&) = delete;
+    SignalsBlocked& operator=(const SignalsBlocked&) = delete;
+
+  private:
+    sigset_t previous_;
+};
+
+}  // namespace rt::interrupt

@@ -1,0 +1,139 @@
+#include "rt/interrupt.h"
+
+#include <fcntl.h>
+#include <limits.h>
+#include <pthread.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+
+namespace rt::interrupt {
+
+namespace {
+
+// Lock-free atomics are the only shared state a signal handler may touch safely.
+static_assert(std::atomic<int>::is_always_lock_free);
+
+constexpr int kSlots = 4;  // the image, the -M file, and room to spare
+enum SlotState : int { kFree, kFilling, kArmed };
+
+// Fixed buffers: the handler cannot allocate.
+char g_paths[kSlots][PATH_MAX];
+std::atomic<int> g_slot_state[kSlots];
+
+char g_tokens[kMaxTokens];
+std::atomic<int> g_token_count{0};
+std::atomic<int> g_token_fd{-1};
+
+std::atomic<int> g_handling{0};  // 1 while a handler cleans up, 2 once it is done
+
+constexpr int kHandled[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE};
+
+void write_stderr(const char* text) {
+    std::size_t left = std::strlen(text);
+    while (left > 0) {
+        const ssize_t n = ::write(STDERR_FILENO, text, left);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) return;
+        text += n;
+        left -= static_cast<std::size_t>(n);
+    }
+}
+
+extern "C" void on_signal(int sig) {
+    const int saved_errno = errno;
+    int expected = 0;
+    if (g_handling.compare_exchange_strong(expected, 1)) {
+        for (int i = 0; i < kSlots; ++i)
+            if (g_slot_state[i].exchange(kFree) == kArmed) ::unlink(g_paths[i]);
+        give_back_tokens();
+        // A reader that went away (SIGPIPE) is not news to the user.
+        if (sig != SIGPIPE) write_stderr("rt: interrupted\n");
+        g_handling.store(2);
+    } else {
+        // Another thread is cleaning up: let it finish before this signal ends the process.
+        while (g_handling.load() != 2) {
+        }
+    }
+    // End as killed by the signal: the default action runs once this handler returns (the
+    // signal is blocked until then).
+    struct sigaction dfl {};
+    dfl.sa_handler = SIG_DFL;
+    sigemptyset(&dfl.sa_mask);
+    sigaction(sig, &dfl, nullptr);
+    raise(sig);
+    errno = saved_errno;
+}
+
+sigset_t handled_set() {
+    sigset_t set;
+    sigemptyset(&set);
+    for (const int sig : kHandled) sigaddset(&set, sig);
+    return set;
+}
+
+}  // namespace
+
+void install_handlers() {
+    struct sigaction action {};
+    action.sa_handler = on_signal;
+    action.sa_mask = handled_set();  // one clean-up at a time in a thread
+    action.sa_flags = SA_RESTART;
+    for (const int sig : kHandled) {
+        struct sigaction old {};
+        if (sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
+        sigaction(sig, &action, nullptr);
+    }
+}
+
+int register_temporary(const std::string& path) {
+    if (path.size() >= PATH_MAX) return -1;
+    for (int i = 0; i < kSlots; ++i) {
+        int expected = kFree;
+        if (!g_slot_state[i].compare_exchange_strong(expected, kFilling)) continue;
+        std::memcpy(g_paths[i], path.c_str(), path.size() + 1);
+        g_slot_state[i].store(kArmed);
+        return i;
+    }
+    return -1;
+}
+
+void forget_temporary(int slot) {
+    if (slot >= 0 && slot < kSlots) g_slot_state[slot].store(kFree);
+}
+
+void hold_tokens(int fd, const char* tokens, int count) {
+    give_back_tokens();  // never two sets at once
+    if (count > kMaxTokens) count = kMaxTokens;
+    std::memcpy(g_tokens, tokens, static_cast<std::size_t>(count));
+    g_token_fd.store(fd);
+    g_token_count.store(count);
+}
+
+int give_back_tokens() {
+    // Whoever takes the count writes the tokens: the handler and a normal exit never both do.
+    const int count = g_token_count.exchange(0);
+    const int fd = g_token_fd.load();
+    int written = 0;
+    while (written < count) {
+        const ssize_t n =
+            ::write(fd, g_tokens + written, static_cast<std::size_t>(count - written));
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) break;
+        written += static_cast<int>(n);
+    }
+    return written;
+}
+
+int tokens_held() { return g_token_count.load(); }
+
+SignalsBlocked::SignalsBlocked() {
+    const sigset_t set = handled_set();
+    pthread_sigmask(SIG_BLOCK, &set, &previous_);
+}
+
+SignalsBlocked::~SignalsBlocked() { pthread_sigmask(SIG_SETMASK, &previous_, nullptr); }
+
+}  // namespace rt::interrupt
