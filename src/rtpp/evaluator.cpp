@@ -1,6 +1,8 @@
 #include "rtpp/evaluator.h"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <numbers>
 
 #include "rtpp/parser.h"
@@ -467,15 +469,18 @@ Value Evaluator::call(const Expr& expr) {
     if (f == "floor") return args(1), result(std::floor(num(0)));
     if (f == "ceil") return args(1), result(std::ceil(num(0)));
     if (f == "round") {
-        // round(x) to a whole number, round(x, n) to n decimals (the double nearest the
-        // n-decimal number, as that number written out would read).
+        // round(x) to a whole number, round(x, n) to n decimals: the double nearest the
+        // decimal that the exact value of x rounds to (as printf rounds it, and Python's
+        // round), not round(x * 10^n) / 10^n, whose multiplication can move a value across
+        // a rounding boundary.
         if (expr.args.size() == 1) return result(std::round(num(0)));
         args(2);
         const double digits = num(1);
         if (digits != std::floor(digits) || digits < 0 || digits > 15)
             fail(expr.args[1].pos, "round's decimals must be a whole number from 0 to 15");
-        const double scale = std::pow(10.0, digits);
-        return result(std::round(num(0) * scale) / scale);
+        char text[400];
+        std::snprintf(text, sizeof text, "%.*f", static_cast<int>(digits), num(0));
+        return result(std::strtod(text, nullptr));
     }
     if (f == "min" || f == "max") {
         if (expr.args.empty()) fail(expr.pos, f + " needs at least one argument");
