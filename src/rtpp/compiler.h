@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "rtpp/limits.h"
+#include "rtpp/source.h"  // CompileError
 
 namespace rtpp {
 

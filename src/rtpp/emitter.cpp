@@ -400,7 +400,7 @@ void Emitter::camera(const ObjectValue& object) {
             if (!(fov > 0 && fov < 180))
                 fail(f.pos_of("fov"),
                      "camera fov must be between 0 and 180 degrees, got " + std::to_string(fov));
-            c.half_width = std::tan(fov / 2 * 3.14159265358979323846 / 180);
+            c.half_width = tan_degrees(fov / 2);
         } else {
             c.half_width = f.number("half_width");
             if (!(c.half_width > 0)) fail(f.pos_of("half_width"), "camera half_width must be > 0");

@@ -447,7 +447,7 @@ Value Evaluator::call(const Expr& expr) {
         args(1);
         const double c = cos_degrees(num(0));
         if (c == 0) fail(expr.pos, "tan of an odd multiple of 90 degrees is infinite");
-        return result(sin_degrees(num(0)) / c);
+        return result(tan_degrees(num(0)));
     }
     if (f == "asin") return args(1), result(std::asin(num(0)) * kDegrees);
     if (f == "acos") return args(1), result(std::acos(num(0)) * kDegrees);

@@ -53,6 +53,13 @@ double cos_degrees(double degrees) {
     return std::cos(degrees * std::numbers::pi / 180);
 }
 
+double tan_degrees(double degrees) {
+    const double r = std::fmod(reduce(degrees), 180.0);
+    if (r == 45) return 1;
+    if (r == 135) return -1;
+    return sin_degrees(degrees) / cos_degrees(degrees);
+}
+
 Vec3 unit(const Vec3& v) {
     const double length = std::sqrt(rt::dot(v, v));
     return {v.x / length, v.y / length, v.z / length};

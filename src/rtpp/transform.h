@@ -34,6 +34,8 @@ Frame rotation(double degrees, const Vec3& axis);
 // and 60 for the cosine, where the value is 0.5).
 double sin_degrees(double degrees);
 double cos_degrees(double degrees);
+// Exact at multiples of 45 degrees too; infinite at odd multiples of 90.
+double tan_degrees(double degrees);
 
 // v divided by its length, component by component: a vector along an axis comes out as
 // exactly 1 along it (v * (1 / |v|) need not).
