@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 
 #include "rt/error.h"
 
@@ -16,14 +17,84 @@ bool is_space(char c) {
     return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
 }
 bool ends_plain_token(char c) { return is_space(c) || c == '#'; }
+bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+// A comment longer than this is not a line marker, so a marker costs bounded memory.
+constexpr std::size_t kMaxMarkerLength = kMaxTokenLength + 32;
+
+// Reads `#line N "path"` (blanks between, nothing but blanks after): N >= 1 and a non-empty
+// path without quotes. Anything else is an ordinary comment.
+bool parse_line_marker(std::string_view text, int& line, std::string_view& path) {
+    constexpr std::string_view kKeyword = "#line";
+    if (text.substr(0, kKeyword.size()) != kKeyword) return false;
+    std::size_t i = kKeyword.size();
+    const auto skip_blanks = [&] {
+        const std::size_t start = i;
+        while (i < text.size() && is_blank(text[i])) ++i;
+        return i > start;
+    };
+    if (!skip_blanks()) return false;
+    long value = 0;
+    const std::size_t digits_start = i;
+    while (i < text.size() && text[i] >= '0' && text[i] <= '9') {
+        value = value * 10 + (text[i] - '0');
+        if (value > std::numeric_limits<int>::max()) return false;
+        ++i;
+    }
+    if (i == digits_start || value < 1 || !skip_blanks()) return false;
+    if (i >= text.size() || text[i] != '"') return false;
+    const std::size_t close = text.find('"', i + 1);
+    if (close == std::string_view::npos || close == i + 1) return false;
+    path = text.substr(i + 1, close - i - 1);
+    i = close + 1;
+    skip_blanks();
+    if (i != text.size()) return false;
+    line = static_cast<int>(value);
+    return true;
+}
 }  // namespace
 
 Lexer::Lexer(std::istream& in, std::string name)
-    : in_(in), name_(std::move(name)), chunk_(new char[kChunkSize]) {}
+    : in_(in), names_{std::move(name)}, chunk_(new char[kChunkSize]) {}
+
+std::string Lexer::place(Location where) const {
+    return names_[static_cast<std::size_t>(where.file)] + ":" + std::to_string(where.line) + ":" +
+           std::to_string(where.column);
+}
 
 void Lexer::fail(Location where, std::string_view message) const {
-    throw Error(name_ + ":" + std::to_string(where.line) + ":" + std::to_string(where.column) +
-                ": " + std::string(message));
+    throw Error(place(where) + ": " + std::string(message));
+}
+
+// A newline: the next line is the following one, or the one a marker just named.
+void Lexer::end_line() {
+    ++pos_;
+    if (marker_pending_) {
+        here_ = marker_;
+        marker_pending_ = false;
+    } else {
+        ++here_.line;
+    }
+    here_.column = 1;
+    line_is_blank_ = true;
+}
+
+void Lexer::note_line_marker() {
+    int line = 0;
+    std::string_view path;
+    if (!parse_line_marker(comment_, line, path)) return;
+    marker_.line = line;
+    marker_.column = 1;
+    // The same name as the last marker's (the usual case) reuses its index.
+    if (names_.back() == path && names_.size() > 1) {
+        marker_.file = static_cast<int>(names_.size() - 1);
+    } else if (names_.front() == path) {
+        marker_.file = 0;
+    } else {
+        names_.emplace_back(path);
+        marker_.file = static_cast<int>(names_.size() - 1);
+    }
+    marker_pending_ = true;
 }
 
 // Reads the next chunk when the current one is used up; false at the end of the input.
@@ -55,24 +126,33 @@ void Lexer::skip_space_and_comments() {
     while (fill()) {
         const char c = chunk_[pos_];
         if (c == '\n') {
-            ++pos_;
-            ++here_.line;
-            here_.column = 1;
+            end_line();
         } else if (is_space(c)) {
             ++pos_;
             ++here_.column;
         } else if (c == '#') {
-            // To the end of the line, leaving the newline for the case above.
+            // To the end of the line, leaving the newline for the case above. A comment that
+            // starts its line may be a line marker, so its text is kept (up to a bound).
+            bool may_be_marker = line_is_blank_;
+            comment_.clear();
             for (;;) {
                 const char* start = chunk_.get() + pos_;
                 const auto* newline =
                     static_cast<const char*>(std::memchr(start, '\n', end_ - pos_));
                 const std::size_t skipped =
                     newline ? static_cast<std::size_t>(newline - start) : end_ - pos_;
+                if (may_be_marker) {
+                    if (comment_.size() + skipped > kMaxMarkerLength)
+                        may_be_marker = false;
+                    else
+                        comment_.append(start, skipped);
+                }
                 pos_ += skipped;
                 here_.column += static_cast<int>(skipped);
                 if (newline || !fill()) break;
             }
+            line_is_blank_ = false;
+            if (may_be_marker) note_line_marker();
         } else {
             return;
         }
@@ -86,6 +166,7 @@ void Lexer::scan() {
     token_.where = here_;
     token_.end = !fill();
     if (token_.end) return;
+    line_is_blank_ = false;
     if (chunk_[pos_] == '"') {
         scan_quoted();
     } else {

@@ -40,6 +40,19 @@ std::string describe_id(long id) {
     return std::to_string(id);
 }
 
+// "simple surface 100": what an object is, for the note about the previous object.
+std::string name_id(long id) {
+    const std::string described = describe_id(id);
+    const auto paren = described.find(" (");
+    if (paren == std::string::npos) return "object " + described;
+    return described.substr(paren + 2, described.size() - paren - 3) + " " +
+           described.substr(0, paren);
+}
+
+std::string line_and_column(Location where) {
+    return std::to_string(where.line) + ":" + std::to_string(where.column);
+}
+
 }  // namespace
 
 std::string format_number(double value) {
@@ -71,6 +84,8 @@ SceneReader::Nest::Nest(SceneReader& reader, Location where) : reader_(reader) {
 double SceneReader::number(std::string_view what) {
     const Token& token = lexer_.next();
     if (token.at_end()) fail(token.where, "unexpected end of file: expected " + std::string(what));
+    ++numbers_read_;
+    last_number_ = token.where;
     if (token.quoted)
         fail(token.where, "expected " + std::string(what) + " (a number), got a quoted string");
     // strtod decides what a number is. from_chars reads the plain decimal numbers that scenes
@@ -172,6 +187,7 @@ Shape SceneReader::shape(std::string_view what) {
     const Location where = next_location();
     const Nest nest(*this, where);
     const long type_id = id(std::string(what) + " ID");
+    begin_object(type_id, where, false);
     const PrimitiveType* type = find_primitive_type(static_cast<int>(type_id));
     if (type == nullptr)
         fail(where, "expected " + std::string(what) + " ID (a primitive, 1-99), got " +
@@ -183,6 +199,7 @@ SurfacePtr SceneReader::surface() {
     const Location where = next_location();
     const Nest nest(*this, where);
     const long type_id = id("surface ID");
+    begin_object(type_id, where, false);
     if (type_id == kUseDefaultSurfaceId) {
         if (!default_surface_)
             fail(where, "106 (use default surface) but no default surface has been set with 105");
@@ -208,6 +225,7 @@ Light SceneReader::light(std::string_view what) {
     const Location where = next_location();
     const Nest nest(*this, where);
     const long type_id = id(std::string(what) + " ID");
+    begin_object(type_id, where, false);
     const LightType* type = find_light_type(static_cast<int>(type_id));
     if (type == nullptr)
         fail(where, "expected " + std::string(what) + " ID (a light with a position), got " +
@@ -234,10 +252,68 @@ Viewer SceneReader::read_viewer() {
     return v;
 }
 
+void SceneReader::begin_object(long type_id, Location where, bool top_level) {
+    last_object_ = {type_id, where, numbers_read_, true};
+    if (top_level) top_level_object_ = last_object_;
+}
+
+std::string SceneReader::previous_object_note(Location error_at, long numbers_read,
+                                              Location last_number) const {
+    if (!last_object_.known) return {};
+    const auto place = [&](Location at) {
+        return at.file == error_at.file ? line_and_column(at) : lexer_.place(at);
+    };
+    const long count = numbers_read - last_object_.numbers_before;
+    std::string note = "note: the previous object, " + name_id(last_object_.id) + " at " +
+                       place(last_object_.where) + ", read " + std::to_string(count) +
+                       (count == 1 ? " number" : " numbers");
+    if (count > 0) note += " ending at " + place(last_number);
+    const ObjectStart& top = top_level_object_;
+    if (top.known && (top.where.line != last_object_.where.line ||
+                      top.where.column != last_object_.where.column ||
+                      top.where.file != last_object_.where.file))
+        note += ", within " + name_id(top.id) + " at " + place(top.where) + " (" +
+                std::to_string(numbers_read - top.numbers_before) + " numbers in all)";
+    return note;
+}
+
+void SceneReader::fail_at_object_id(Location where, std::string_view message, long numbers_read,
+                                    Location last_number) const {
+    const std::string note = previous_object_note(where, numbers_read, last_number);
+    if (note.empty()) fail(where, message);
+    throw Error(lexer_.place(where) + ": " + std::string(message) + "\n" + lexer_.place(where) +
+                ": " + note);
+}
+
 void SceneReader::read_top_level_object(Scene& scene, bool& have_viewer) {
     const Location where = next_location();
-    const long type_id = id("object ID");
+    // A bad token here is often a number too many or too few in the object before it, so
+    // errors about the ID say where that object began and how much of the input it took.
+    const long numbers_before = numbers_read_;
+    const Location last_number_before = last_number_;
+    long type_id = 0;
+    try {
+        type_id = id("object ID");
+    } catch (const Error& e) {
+        const std::string note = previous_object_note(where, numbers_before, last_number_before);
+        if (note.empty()) throw;
+        throw Error(std::string(e.what()) + "\n" + lexer_.place(where) + ": " + note);
+    }
     const int small = static_cast<int>(type_id);
+    const bool known = find_primitive_type(small) || find_light_type(small) ||
+                       type_id == kViewerId || type_id == kAmbientLightId ||
+                       type_id == kDefaultSurfaceId;
+    if (!known) {
+        if (find_surface_type(small) != nullptr || type_id == kUseDefaultSurfaceId)
+            fail_at_object_id(where,
+                              "surface " + describe_id(type_id) +
+                                  " found where an object is expected; a surface must follow a "
+                                  "primitive",
+                              numbers_before, last_number_before);
+        fail_at_object_id(where, "unknown object ID " + std::to_string(type_id), numbers_before,
+                          last_number_before);
+    }
+    begin_object(type_id, where, true);
     if (const PrimitiveType* type = find_primitive_type(small)) {
         Object object;
         object.shape = {type, type->read(*this)};
@@ -255,11 +331,6 @@ void SceneReader::read_top_level_object(Scene& scene, bool& have_viewer) {
         scene.ambient += Spectrum(intensity.x, intensity.y, intensity.z);
     } else if (type_id == kDefaultSurfaceId) {
         default_surface_ = surface();
-    } else if (find_surface_type(small) != nullptr || type_id == kUseDefaultSurfaceId) {
-        fail(where, "surface " + describe_id(type_id) +
-                        " found where an object is expected; a surface must follow a primitive");
-    } else {
-        fail(where, "unknown object ID " + std::to_string(type_id));
     }
 }
 

@@ -7,12 +7,15 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace rt {
 
 struct Location {
     int line = 1;
     int column = 1;
+    int file = 0;  // which of the lexer's file names: 0 is the input's own, others come from
+                   // `#line N "path"` markers
 };
 
 struct Token {
@@ -38,7 +41,9 @@ class Lexer {
     // (the lexer reuses one token, so reading allocates nothing once its text has grown).
     const Token& next();
 
-    const std::string& name() const { return name_; }
+    const std::string& name() const { return names_.front(); }
+    // "name:line:col", where `name` is the input's or the one a line marker gave.
+    std::string place(Location where) const;
     // Throws rt::Error with the message prefixed by "name:line:col: ".
     [[noreturn]] void fail(Location where, std::string_view message) const;
 
@@ -51,15 +56,21 @@ class Lexer {
     void skip_space_and_comments();
     void scan_quoted();
     void scan_plain();
+    void end_line();
+    void note_line_marker();
 
     std::istream& in_;
-    std::string name_;
+    std::vector<std::string> names_;  // the input's name, then each name a marker gave
     std::unique_ptr<char[]> chunk_;
     std::size_t pos_ = 0;  // the next unread byte of chunk_
     std::size_t end_ = 0;  // one past the last byte read into chunk_
     Token token_;
-    bool peeked_ = false;  // token_ holds the next token, not yet consumed
-    Location here_;        // where chunk_[pos_] is in the input
+    bool peeked_ = false;          // token_ holds the next token, not yet consumed
+    Location here_;                // where chunk_[pos_] is in the input
+    bool line_is_blank_ = true;    // nothing but blanks so far on this line: a marker may start
+    std::string comment_;          // a comment that may be a line marker, as read so far
+    bool marker_pending_ = false;  // the comment just read was a marker: the next line is ...
+    Location marker_;              // ... this line of this file
 };
 
 }  // namespace rt

@@ -86,6 +86,20 @@ class SceneReader {
         SceneReader& reader_;
     };
 
+    // Where an object began and how many numbers had been read then, for the note that an
+    // error at the next object ID adds (a miscounted object shows up one object later).
+    struct ObjectStart {
+        long id = 0;
+        Location where;
+        long numbers_before = 0;
+        bool known = false;
+    };
+    void begin_object(long type_id, Location where, bool top_level);
+    std::string previous_object_note(Location error_at, long numbers_read,
+                                     Location last_number) const;
+    [[noreturn]] void fail_at_object_id(Location where, std::string_view message, long numbers_read,
+                                        Location last_number) const;
+
     long id(std::string_view what);
     void read_top_level_object(Scene& scene, bool& have_viewer);
     Viewer read_viewer();
@@ -97,6 +111,10 @@ class SceneReader {
     std::map<std::filesystem::path, std::shared_ptr<const Image>> textures_;
     std::vector<std::filesystem::path> texture_paths_;
     int depth_ = 0;
+    long numbers_read_ = 0;         // every number token so far, IDs included
+    Location last_number_;          // where the last of them began
+    ObjectStart last_object_;       // the object (at any depth) whose ID was read last
+    ObjectStart top_level_object_;  // the top-level object that holds it
     std::size_t skipped_triangles_ = 0;
     int threads_ = 1;
 };

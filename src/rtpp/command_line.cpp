@@ -1,0 +1,117 @@
+#include "rtpp/command_line.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "rtpp/source.h"
+
+namespace rtpp {
+
+const char* usage_text() {
+    return R"(usage: rtpp [options] [scene.rts]
+
+Compiles a scene in rt's readable scene language to rt's numeric scene
+format. The scene is read from the file named, or from standard input when
+it is '-' or absent:  rtpp scene.rts | rt -o scene.ppm
+
+options:
+  -o, --output FILE   write the numeric scene to FILE ('-', the default:
+                      standard output); nothing is written on an error
+  -I, --include DIR   look for included files in DIR after the including
+                      file's own directory (repeatable, searched in order)
+  -h, --help          print this help and exit
+  -V, --version       print the version and exit
+
+exit status: 0 success, 1 scene or input/output error, 2 usage error
+)";
+}
+
+CommandLine parse_command_line(const std::vector<std::string>& args) {
+    CommandLine cl;
+    bool have_input = false;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        std::string arg = args[i];
+        std::string value;
+        bool inline_value = false;
+        if (arg.rfind("--", 0) == 0) {
+            if (const auto eq = arg.find('='); eq != std::string::npos) {
+                value = arg.substr(eq + 1);
+                arg.resize(eq);
+                inline_value = true;
+            }
+        } else if (arg.size() > 2 && arg[0] == '-' && (arg[1] == 'o' || arg[1] == 'I')) {
+            value = arg.substr(2);
+            arg.resize(2);
+            inline_value = true;
+        }
+        const auto take_value = [&]() -> std::string {
+            if (inline_value) return value;
+            if (i + 1 >= args.size()) throw UsageError{arg + " needs a value"};
+            return args[++i];
+        };
+        const auto no_value = [&] {
+            if (inline_value) throw UsageError{arg + " takes no value"};
+        };
+        if (arg == "-o" || arg == "--output") {
+            cl.output = take_value();
+            if (cl.output.empty()) throw UsageError{"-o needs a file name"};
+        } else if (arg == "-I" || arg == "--include") {
+            const std::string dir = take_value();
+            if (dir.empty()) throw UsageError{"-I needs a directory"};
+            cl.include_dirs.push_back(dir);
+        } else if (arg == "-h" || arg == "--help") {
+            no_value();
+            cl.help = true;
+        } else if (arg == "-V" || arg == "--version") {
+            no_value();
+            cl.version = true;
+        } else if (arg.size() > 1 && arg[0] == '-') {
+            throw UsageError{"unknown option '" + arg + "'"};
+        } else {
+            if (have_input)
+                throw UsageError{"more than one scene given ('" + cl.input + "' and '" + arg +
+                                 "')"};
+            cl.input = arg;
+            have_input = true;
+        }
+    }
+    return cl;
+}
+
+void write_output(const std::string& path, const std::string& text) {
+    if (path == "-") {
+        std::cout.write(text.data(), static_cast<std::streamsize>(text.size()));
+        std::cout.flush();
+        if (!std::cout) throw CompileError("rtpp: cannot write to standard output");
+        return;
+    }
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (fs::exists(path, ec) && !fs::is_regular_file(path, ec))
+        throw CompileError(path + ": not a regular file; rtpp writes only regular files");
+    const fs::path target(path);
+    // (Appended, not built with "literal" + string: g++ 12 warns falsely about that chain.)
+    std::string temporary_name = ".";
+    temporary_name += target.filename().string();
+    temporary_name += ".rtpp-tmp";
+    const fs::path temporary = target.parent_path() / temporary_name;
+    {
+        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+        if (!out) throw CompileError(path + ": cannot create the output file");
+        out.write(text.data(), static_cast<std::streamsize>(text.size()));
+        out.close();
+        if (!out) {
+            fs::remove(temporary, ec);
+            throw CompileError(path + ": cannot write the output file");
+        }
+    }
+    fs::rename(temporary, target, ec);
+    if (ec) {
+        fs::remove(temporary, ec);
+        throw CompileError(path + ": cannot replace the output file");
+    }
+}
+
+}  // namespace rtpp

@@ -1,0 +1,422 @@
+#include "rtpp/emitter.h"
+
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <stdexcept>
+
+#include "rtpp/camera.h"
+
+namespace rtpp {
+
+namespace {
+
+// Reads fields by name, with the kind's defaults, failing at the object for a missing one.
+class Fields {
+  public:
+    explicit Fields(const ObjectValue& object) : object_(object) {}
+
+    const FieldValue* find(const char* name) const { return object_.find(name); }
+    bool has(const char* name) const { return find(name) != nullptr; }
+    SourcePos pos_of(const char* name) const {
+        const FieldValue* f = find(name);
+        return f ? f->pos : object_.pos;
+    }
+    double number(const char* name) const {
+        if (const FieldValue* f = find(name)) return f->value.number;
+        return spec(name).default_number;
+    }
+    rt::Vec3 vector(const char* name) const {
+        if (const FieldValue* f = find(name)) return f->value.vector;
+        return spec(name).default_vector;
+    }
+    const Value& value(const char* name) const {
+        if (const FieldValue* f = find(name)) return f->value;
+        missing(name);
+    }
+    // The values of a repeated field, in order.
+    std::vector<const FieldValue*> all(const char* name) const {
+        std::vector<const FieldValue*> found;
+        for (const FieldValue& f : object_.fields)
+            if (std::string_view(f.spec->name) == name) found.push_back(&f);
+        return found;
+    }
+    // Exactly one of two alternative fields.
+    const char* one_of(const char* a, const char* b) const {
+        if (has(a) && has(b))
+            fail(pos_of(b),
+                 std::string(object_.kind->keyword) + " takes " + a + " or " + b + ", not both");
+        if (has(a)) return a;
+        if (has(b)) return b;
+        fail(object_.pos,
+             std::string(object_.kind->keyword) + ": missing field '" + a + "' (or '" + b + "')");
+    }
+    [[noreturn]] void missing(const char* name) const {
+        fail(object_.pos, std::string(object_.kind->keyword) + ": missing field '" + name + "'");
+    }
+
+  private:
+    const FieldSpec& spec(const char* name) const {
+        const FieldSpec* s = object_.kind->field(name);
+        if (s == nullptr || !s->has_default) missing(name);
+        return *s;
+    }
+    const ObjectValue& object_;
+};
+
+}  // namespace
+
+Emitter::Emitter(const SourceFiles& files, const Limits& limits, std::string& out)
+    : files_(files), limits_(limits), out_(out) {}
+
+// Each top-level object starts a line; a marker comes first unless the line already follows
+// the source (the next source line after the previous object's).
+void Emitter::start_line(SourcePos pos) {
+    if (line_open_) {
+        out_ += '\n';
+        ++mapped_line_;
+        line_open_ = false;
+    }
+    mark(pos);
+}
+
+// Inside an object, a part written on another source line (a CSG operand) gets its own line.
+void Emitter::mark(SourcePos pos) {
+    if (line_open_ && pos.file == mapped_file_ && pos.line == mapped_line_) return;
+    if (line_open_) {
+        out_ += '\n';
+        ++mapped_line_;
+        line_open_ = false;
+    }
+    if (pos.file != mapped_file_ || pos.line != mapped_line_) {
+        const std::string& name = files_[pos.file].name;
+        // A name a marker cannot quote gets no marker: rt then names the generated line.
+        if (name.find_first_of("\"\n") == std::string::npos) {
+            out_ += "#line " + std::to_string(pos.line) + " \"" + name + "\"\n";
+            mapped_file_ = pos.file;
+            mapped_line_ = pos.line;
+        }
+    }
+    line_open_ = true;
+}
+
+void Emitter::word(std::string_view text) {
+    if (!out_.empty() && out_.back() != '\n') out_ += ' ';
+    out_ += text;
+}
+
+// The shortest text that reads back as the same double, so a value written in the source
+// reaches rt unchanged (and -0 as 0, as people write it).
+void Emitter::number(double value) {
+    if (value == 0) value = 0;
+    char text[32];
+    const auto [end, error] = std::to_chars(text, text + sizeof text, value);
+    word(std::string_view(text, static_cast<std::size_t>(end - text)));
+}
+
+void Emitter::vector(const rt::Vec3& v) {
+    number(v.x);
+    number(v.y);
+    number(v.z);
+}
+
+void Emitter::frame(int id, const Frame& f) {
+    number(id);
+    vector(f.origin);
+    vector(f.x);
+    vector(f.y);
+    vector(f.z);
+}
+
+void Emitter::place(const ObjectValue& object) { place_in(object, Frame{}); }
+
+void Emitter::place_in(const ObjectValue& object, const Frame& parent) {
+    const Frame placed = compose(parent, object.transform);
+    const Category category = object.kind->category;
+    if (category == Category::group) {
+        for (const ObjectPtr& child : object.children) place_in(*child, placed);
+        return;
+    }
+    if (++objects_ > limits_.objects)
+        fail(object.pos, "more than " + std::to_string(limits_.objects) + " objects written");
+    switch (category) {
+        case Category::primitive:
+        case Category::csg:
+            start_line(object.pos);
+            shape(object, placed);
+            if (category == Category::primitive) surface_slot(object);
+            return;
+        case Category::light:
+            start_line(object.pos);
+            if (!placed.is_identity()) frame(112, placed);
+            light(object);
+            return;
+        case Category::ambient:
+            if (!placed.is_identity()) fail(object.pos, "an ambient light cannot be transformed");
+            start_line(object.pos);
+            number(103);
+            vector(Fields(object).vector("intensity"));
+            return;
+        case Category::camera:
+        case Category::viewer:
+            if (!placed.is_identity()) fail(object.pos, "a camera cannot be transformed");
+            if (have_camera_) fail(object.pos, "a second camera; a scene has exactly one");
+            have_camera_ = true;
+            start_line(object.pos);
+            camera(object);
+            return;
+        case Category::surface:
+            fail(object.pos, std::string("a ") + object.kind->keyword +
+                                 " surface on its own does nothing: give it to an object "
+                                 "(surface NAME) or make it the default (default_surface NAME)");
+        case Category::group:
+            break;
+    }
+}
+
+void Emitter::default_surface(const ObjectValue& s, SourcePos pos) {
+    start_line(pos);
+    number(105);
+    surface(s);
+    have_default_surface_ = true;
+}
+
+void Emitter::finish(SourcePos end) {
+    if (!have_camera_) fail(end, "no camera in the scene; one is required");
+    if (line_open_) out_ += '\n';
+    line_open_ = false;
+}
+
+void Emitter::shape(const ObjectValue& object, const Frame& placed) {
+    mark(object.pos);
+    if (!placed.is_identity()) frame(7, placed);
+    number(object.kind->id);
+    if (object.kind->category == Category::csg)
+        csg_operands(object);
+    else
+        primitive_numbers(object);
+}
+
+// A union or intersection of more than two is nested to the right (A op (B op C)); a
+// difference of more than two takes all the others from the first: A - (B u C u ...).
+void Emitter::csg_operands(const ObjectValue& object) {
+    const auto& operands = object.children;
+    if (operands.size() < 2)
+        fail(object.pos, std::string(object.kind->keyword) + " needs at least two objects, got " +
+                             std::to_string(operands.size()));
+    const auto operand = [&](const ObjectValue& o) {
+        const Category c = o.kind->category;
+        if (c != Category::primitive && c != Category::csg)
+            fail(o.pos, std::string("a ") + o.kind->keyword + " cannot be part of a " +
+                            object.kind->keyword);
+        shape(o, o.transform);
+        if (c == Category::primitive) surface_slot(o);
+    };
+    const bool difference = object.kind->id == 22;
+    for (std::size_t i = 0; i + 1 < operands.size(); ++i) {
+        operand(*operands[i]);
+        if (i + 2 < operands.size()) number(difference ? 20 : object.kind->id);
+    }
+    operand(*operands.back());
+}
+
+void Emitter::primitive_numbers(const ObjectValue& object) {
+    const Fields f(object);
+    const std::string_view kind = object.kind->keyword;
+    const auto vertices = [&](std::size_t min, std::size_t max) {
+        const auto list = f.all("vertex");
+        if (list.size() < min || list.size() > max)
+            fail(object.pos,
+                 std::string(kind) + " needs " +
+                     (min == max ? std::to_string(min) : "at least " + std::to_string(min)) +
+                     " vertices, got " + std::to_string(list.size()));
+        return list;
+    };
+    if (kind == "sphere") {
+        number(f.number("radius"));
+        vector(f.vector("centre"));
+    } else if (kind == "plane") {
+        number(f.number("distance"));
+        vector(f.vector("normal"));
+    } else if (kind == "disk") {
+        vector(f.vector("centre"));
+        vector(f.vector("normal"));
+        number(f.number("radius"));
+    } else if (kind == "annulus") {
+        vector(f.vector("centre"));
+        vector(f.vector("normal"));
+        number(f.number("outer"));
+        number(f.number("inner"));
+    } else if (kind == "triangle") {
+        for (const FieldValue* v : vertices(3, 3)) vector(v->value.vector);
+    } else if (kind == "parallelogram") {
+        vector(f.vector("corner"));
+        vector(f.vector("a"));
+        vector(f.vector("b"));
+    } else if (kind == "cone") {
+        const char* which = f.one_of("alpha", "angle");
+        number(which == std::string_view("alpha") ? f.number("alpha")
+                                                  : cos_degrees(f.number("angle")));
+        number(f.number("start"));
+        number(f.number("finish"));
+        vector(f.vector("apex"));
+        vector(f.vector("axis"));
+    } else if (kind == "cylinder") {
+        number(f.number("radius"));
+        number(f.number("start"));
+        number(f.number("finish"));
+        vector(f.vector("origin"));
+        vector(f.vector("axis"));
+    } else if (kind == "torus") {
+        vector(f.vector("centre"));
+        vector(f.vector("axis"));
+        number(f.number("major"));
+        number(f.number("minor"));
+    } else if (kind == "polygon") {
+        const auto list = vertices(3, static_cast<std::size_t>(limits_.list_items));
+        number(static_cast<double>(list.size()));
+        for (const FieldValue* v : list) vector(v->value.vector);
+    } else if (kind == "box") {
+        vector(f.vector("min"));
+        vector(f.vector("max"));
+    } else if (kind == "quadric") {
+        for (const char* c : {"xx", "yy", "zz", "xy", "xz", "yz", "x", "y", "z", "constant"})
+            number(f.number(c));
+        vector(f.vector("min"));
+        vector(f.vector("max"));
+    } else if (kind == "mesh") {
+        const auto list = f.all("vertex");
+        const auto triangles = f.all("triangle");
+        if (list.empty() || triangles.empty())
+            fail(object.pos, "mesh needs at least one vertex and one triangle");
+        number(static_cast<double>(list.size()));
+        number(static_cast<double>(triangles.size()));
+        for (const FieldValue* v : list) vector(v->value.vector);
+        const double count = static_cast<double>(list.size());
+        for (const FieldValue* t : triangles) {
+            for (int i = 0; i < 3; ++i) {
+                const double index = t->value.vector[i];
+                if (index != std::floor(index) || index < 0 || index >= count)
+                    fail(t->pos, "mesh triangle indices must be whole numbers from 0 to " +
+                                     std::to_string(list.size() - 1) + ", got " +
+                                     std::to_string(index));
+            }
+            vector(t->value.vector);
+        }
+    }
+}
+
+void Emitter::surface_slot(const ObjectValue& object) {
+    if (const FieldValue* s = object.find("surface")) return surface(*s->value.object);
+    if (!have_default_surface_)
+        fail(object.pos, std::string(object.kind->keyword) +
+                             ": missing field 'surface' (and no default_surface is set)");
+    number(106);
+}
+
+void Emitter::surface(const ObjectValue& s) {
+    if (!s.transform.is_identity()) frame(111, s.transform);
+    const Fields f(s);
+    const std::string_view kind = s.kind->keyword;
+    number(s.kind->id);
+    if (kind == "surface") {
+        vector(f.vector("colour"));
+        for (const char* name : {"ks", "ke", "kd", "kt", "ior"}) number(f.number(name));
+    } else if (kind == "glass") {
+        vector(f.vector("colour"));
+        for (const char* name : {"ks", "ke", "kd", "ior"}) number(f.number(name));
+        vector(f.vector("absorption"));
+    } else if (kind == "checker") {
+        number(f.number("cell"));
+        surface(*f.value("a").object);
+        surface(*f.value("b").object);
+    } else if (kind == "image") {
+        vector(f.vector("origin"));
+        vector(f.vector("u"));
+        vector(f.vector("v"));
+        // Relative to the file that names it, written relative to where rtpp runs: where rt
+        // reading the output from a pipe looks for it.
+        const std::filesystem::path written(f.value("file").text);
+        const SourcePos at = f.pos_of("file");
+        const std::string path =
+            written.is_absolute()
+                ? written.string()
+                : (files_[at.file].path.parent_path() / written).lexically_normal().string();
+        if (path.find_first_of("\"\n") != std::string::npos)
+            fail(f.pos_of("file"), "an image file name cannot contain '\"' or a newline");
+        word("\"" + path + "\"");
+        surface(*f.value("base").object);
+    }
+}
+
+void Emitter::light(const ObjectValue& object) {
+    const Fields f(object);
+    const std::string_view kind = object.kind->keyword;
+    if (kind == "point_light") {
+        number(f.number("falloff") != 0 ? 101 : 104);
+        vector(f.vector("position"));
+        vector(f.vector("intensity"));
+    } else if (kind == "spot_light") {
+        number(109);
+        vector(f.vector("position"));
+        vector(f.vector("direction"));
+        const char* which = f.one_of("cos_cutoff", "cutoff_angle");
+        number(which == std::string_view("cos_cutoff") ? f.number("cos_cutoff")
+                                                       : cos_degrees(f.number("cutoff_angle")));
+        number(f.number("exponent"));
+        vector(f.vector("intensity"));
+    } else if (kind == "sphere_light") {
+        number(110);
+        number(f.number("samples"));
+        vector(f.vector("centre"));
+        number(f.number("radius"));
+        vector(f.vector("intensity"));
+    } else if (kind == "directional_light") {
+        number(113);
+        vector(f.vector("direction"));
+        vector(f.vector("intensity"));
+    }
+}
+
+void Emitter::camera(const ObjectValue& object) {
+    const Fields f(object);
+    const rt::Vec3 size = f.vector("size");
+    number(102);
+    if (object.kind->category == Category::viewer) {
+        vector(f.vector("eye"));
+        vector(f.vector("look_at"));
+        vector(f.vector("x"));
+        vector(f.vector("y"));
+    } else {
+        Camera c;
+        c.position = f.vector("position");
+        c.look_at = f.vector("look_at");
+        c.up = f.vector("up");
+        c.width = static_cast<int>(size.x);
+        c.height = static_cast<int>(size.y);
+        c.upright = f.number("upright") != 0;
+        if (f.one_of("fov", "half_width") == std::string_view("fov")) {
+            const double fov = f.number("fov");
+            if (!(fov > 0 && fov < 180))
+                fail(f.pos_of("fov"),
+                     "camera fov must be between 0 and 180 degrees, got " + std::to_string(fov));
+            c.half_width = tan_degrees(fov / 2);
+        } else {
+            c.half_width = f.number("half_width");
+            if (!(c.half_width > 0)) fail(f.pos_of("half_width"), "camera half_width must be > 0");
+        }
+        try {
+            const ViewerVectors v = viewer_vectors(c);
+            vector(c.position);
+            vector(c.look_at);
+            vector(v.x);
+            vector(v.y);
+        } catch (const std::invalid_argument& e) {
+            fail(object.pos, e.what());
+        }
+    }
+    number(size.x);
+    number(size.y);
+}
+
+}  // namespace rtpp

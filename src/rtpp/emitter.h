@@ -1,0 +1,53 @@
+// Writes objects in the numeric format, each top-level object on its own line, with
+// `#line N "file"` markers wherever the output's lines stop following the source's, so that
+// rt's messages name the readable source.
+#pragma once
+
+#include <string>
+
+#include "rtpp/limits.h"
+#include "rtpp/source.h"
+#include "rtpp/value.h"
+
+namespace rtpp {
+
+class Emitter {
+  public:
+    Emitter(const SourceFiles& files, const Limits& limits, std::string& out);
+
+    // A top-level object: a primitive, CSG, group, light, ambient light, camera or viewer.
+    void place(const ObjectValue& object);
+    // 105: later primitives without a surface take this one (106).
+    void default_surface(const ObjectValue& surface, SourcePos pos);
+    // The end of the program: a scene without a camera is an error here, at `end`.
+    void finish(SourcePos end);
+
+  private:
+    void place_in(const ObjectValue& object, const Frame& parent);
+    void start_line(SourcePos pos);
+    void mark(SourcePos pos);
+    void word(std::string_view text);
+    void number(double value);
+    void vector(const rt::Vec3& v);
+    void frame(int id, const Frame& f);
+
+    void shape(const ObjectValue& object, const Frame& frame);
+    void primitive_numbers(const ObjectValue& object);
+    void csg_operands(const ObjectValue& object);
+    void surface_slot(const ObjectValue& object);
+    void surface(const ObjectValue& surface);
+    void light(const ObjectValue& object);
+    void camera(const ObjectValue& object);
+
+    const SourceFiles& files_;
+    const Limits& limits_;
+    std::string& out_;
+    bool line_open_ = false;  // the current output line has something on it
+    int mapped_file_ = -1;    // the source place of the current (or next) output line
+    int mapped_line_ = 0;
+    long objects_ = 0;
+    bool have_default_surface_ = false;
+    bool have_camera_ = false;
+};
+
+}  // namespace rtpp

@@ -1,0 +1,28 @@
+// The bounds that keep any input, however wrong or hostile, from running for ever or using
+// memory without end. Each is documented in docs/language.md; exceeding one is an error that
+// names the place where it happened.
+#pragma once
+
+#include <cstddef>
+
+namespace rtpp {
+
+struct Limits {
+    // Loop iterations in all, over the whole run (a 1000 x 1000 grid is 1,001,000).
+    long loop_iterations = 20'000'000;
+    // Top-level objects written (an object inside a group or CSG counts as its parts).
+    long objects = 10'000'000;
+    // Vertices and index triples in one mesh, polygon or triangle.
+    long list_items = 10'000'000;
+    // Files open at once through include.
+    int include_depth = 32;
+    // Nesting of blocks, parentheses and objects in the source, and of objects in one another
+    // as they are evaluated: keeps the parser's and evaluator's recursion off the stack's end.
+    int nesting = 200;
+    // A string literal, and a name.
+    std::size_t string_length = 4096;
+    // One source file.
+    std::size_t file_size = 256u << 20;
+};
+
+}  // namespace rtpp

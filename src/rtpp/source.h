@@ -1,0 +1,59 @@
+// Where things are in the readable sources: positions, the files they name (with the place each
+// was included from), and the one error type, whose message carries the "included from" chain.
+#pragma once
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace rtpp {
+
+struct SourcePos {
+    int file = -1;  // an index into SourceFiles; -1 for no place (command-line errors)
+    int line = 1;
+    int column = 1;
+};
+
+struct SourceFile {
+    std::string name;            // as messages and line markers show it
+    std::filesystem::path path;  // as opened, for resolving includes against its directory
+    SourcePos included_from;     // file -1 for the top-level file
+};
+
+class SourceFiles {
+  public:
+    int add(SourceFile file) {
+        files_.push_back(std::move(file));
+        return static_cast<int>(files_.size() - 1);
+    }
+    const SourceFile& operator[](int index) const {
+        return files_[static_cast<std::size_t>(index)];
+    }
+    // "name:line:col".
+    std::string place(SourcePos pos) const;
+    // The message, prefixed by its place, then one "  included from name:line:col" line for
+    // each include that led to the file.
+    std::string describe(SourcePos pos, const std::string& message) const;
+
+  private:
+    std::vector<SourceFile> files_;
+};
+
+// A user-facing error: what() is complete, place and include chain included.
+class CompileError : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+// Thrown below the compiler, which adds the place (the source files are its to describe).
+struct SourceError {
+    SourcePos pos;
+    std::string message;
+};
+
+[[noreturn]] inline void fail(SourcePos pos, std::string message) {
+    throw SourceError{pos, std::move(message)};
+}
+
+}  // namespace rtpp

@@ -1,0 +1,366 @@
+// rtpp, the readable scene language: expressions against hand-computed values, transforms
+// against the frames they must write, the camera against the viewer it must write, errors
+// with their places and include chains, line markers through rt, and the limits.
+#include <chrono>
+#include <filesystem>
+#include <sstream>
+#include <string>
+
+#include "check.h"
+#include "cli_util.h"
+#include "rt/reader.h"
+#include "rtpp/compiler.h"
+#include "rtpp/transform.h"
+
+namespace fs = std::filesystem;
+using rt_test::read_file;
+using rt_test::write_file;
+
+namespace {
+
+const std::string kCamera = "camera { position <0, 0, 5> look_at <0, 0, 0> fov 90 size 4, 4 }\n";
+
+// The compiled scene without its header and markers.
+std::string compile_body(const std::string& source) {
+    const std::string out = rtpp::compile(source, "t.rts", ".");
+    std::istringstream in(out);
+    std::string line, body;
+    while (std::getline(in, line))
+        if (!line.empty() && line[0] != '#') body += line + "\n";
+    return body;
+}
+
+// The last line written (after the camera): the object under test.
+std::string last_line(const std::string& source) {
+    const std::string body = compile_body(kCamera + source);
+    const std::size_t end = body.size() - 1;
+    return body.substr(body.rfind('\n', end - 1) + 1, end - body.rfind('\n', end - 1) - 1);
+}
+
+std::string error_of(const std::string& source, const rtpp::CompileOptions& options = {}) {
+    try {
+        rtpp::compile(source, "t.rts", ".", options);
+    } catch (const rtpp::CompileError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+// The value an expression gives, written as an ambient light's intensity.
+std::string value_of(const std::string& expression) {
+    return last_line("ambient { intensity " + expression + " }");
+}
+
+}  // namespace
+
+TEST(expressions_give_hand_computed_values) {
+    CHECK_EQ(value_of("1 + 2 * 3"), std::string("103 7 7 7"));
+    CHECK_EQ(value_of("(1 + 2) * 3"), std::string("103 9 9 9"));
+    CHECK_EQ(value_of("-2 ^ 2"), std::string("103 -4 -4 -4"));
+    CHECK_EQ(value_of("2 ^ 3 ^ 2"), std::string("103 512 512 512"));
+    CHECK_EQ(value_of("7 / 2 - 1"), std::string("103 2.5 2.5 2.5"));
+    CHECK_EQ(value_of("-1 % 3"), std::string("103 2 2 2"));
+    CHECK_EQ(value_of("<sin(30), cos(60), tan(45)>"), std::string("103 0.5 0.5 1"));
+    CHECK_EQ(value_of("<sin(90), cos(90), sin(180)>"), std::string("103 1 0 0"));
+    CHECK_EQ(value_of("<sqrt(16), pow(2, 10), abs(-3)>"), std::string("103 4 1024 3"));
+    CHECK_EQ(value_of("<min(3, 1, 2), max(3, 1, 2), round(2.675, 2)>"),
+             std::string("103 1 3 2.67"));  // 2.675 is 2.67499999... as a double
+    CHECK_EQ(value_of("<length(<3, 4, 0>), dot(<1, 2, 3>, <4, 5, 6>), 0>"),
+             std::string("103 5 32 0"));
+    CHECK_EQ(value_of("cross(x, y)"), std::string("103 0 0 1"));
+    CHECK_EQ(value_of("normalize(<0, 0, 7>)"), std::string("103 0 0 1"));
+    CHECK_EQ(value_of("<1, 2, 3> * 2 + <1, 1, 1> / 2"), std::string("103 2.5 4.5 6.5"));
+    CHECK_EQ(value_of("<1, 2, 3>.y"), std::string("103 2 2 2"));
+    CHECK_EQ(value_of("<(1 < 2), (2 <= 1), (1 == 1 and not (2 != 2))>"),
+             std::string("103 1 0 1"));  // a comparison inside a vector is parenthesised
+    CHECK_EQ(value_of("pi"), std::string("103 3.141592653589793 3.141592653589793 "
+                                         "3.141592653589793"));
+    CHECK_EQ(compile_body(kCamera + "let r = 2\nlet c = <1, r, 3>\n"
+                                    "sphere { radius r * 2 centre c surface { colour 1 kd 1 } }")
+                 .substr(compile_body(kCamera).size()),
+             std::string("1 4 1 2 3 100 1 1 1 0 1 1 0 1\n"));
+}
+
+TEST(every_object_kind_writes_its_contract_numbers) {
+    const std::string s = " surface { colour <0.1, 0.2, 0.3> ks 0.4 ke 5 kd 0.6 kt 0.7 ior 1.5 }";
+    const std::string surface = "100 0.1 0.2 0.3 0.4 5 0.6 0.7 1.5";
+    CHECK_EQ(last_line("plane { normal y distance 2" + s + " }"), "2 2 0 1 0 " + surface);
+    CHECK_EQ(last_line("disk { centre <1, 2, 3> normal z radius 4" + s + " }"),
+             "3 1 2 3 0 0 1 4 " + surface);
+    CHECK_EQ(last_line("annulus { normal z outer 4 inner 1" + s + " }"),
+             "4 0 0 0 0 0 1 4 1 " + surface);
+    CHECK_EQ(last_line("triangle { vertex x vertex y vertex z" + s + " }"),
+             "5 1 0 0 0 1 0 0 0 1 " + surface);
+    CHECK_EQ(last_line("parallelogram { a x b y" + s + " }"), "6 0 0 0 1 0 0 0 1 0 " + surface);
+    CHECK_EQ(last_line("cone { angle 60 axis y" + s + " }"), "8 0.5 0 1 0 0 0 0 1 0 " + surface);
+    CHECK_EQ(last_line("cylinder { radius 1 axis y finish 3" + s + " }"),
+             "9 1 0 3 0 0 0 0 1 0 " + surface);
+    CHECK_EQ(last_line("torus { axis y major 2 minor 0.5" + s + " }"),
+             "10 0 0 0 0 1 0 2 0.5 " + surface);
+    CHECK_EQ(last_line("polygon { vertex x vertex y vertex z vertex -x" + s + " }"),
+             "11 4 1 0 0 0 1 0 0 0 1 -1 0 0 " + surface);
+    CHECK_EQ(last_line("box { min -x max y" + s + " }"), "12 -1 0 0 0 1 0 " + surface);
+    CHECK_EQ(last_line("quadric { xx 1 yy 2 zz 3 xy 4 xz 5 yz 6 x 7 y 8 z 9 constant 10 "
+                       "min -x max x" +
+                       s + " }"),
+             "13 1 2 3 4 5 6 7 8 9 10 -1 0 0 1 0 0 " + surface);
+    CHECK_EQ(last_line("mesh { vertex x vertex y vertex z triangle <0, 1, 2>" + s + " }"),
+             "14 3 1 1 0 0 0 1 0 0 0 1 0 1 2 " + surface);
+    CHECK_EQ(last_line("sphere { radius 1 surface glass { ior 1.5 } }"),
+             "1 1 0 0 0 114 1 1 1 0 1 0 1.5 0 0 0");
+    CHECK_EQ(last_line("sphere { radius 1 surface checker { cell 2 a surface { colour 1 kd 1 } "
+                       "b surface { colour 0 kd 1 } } }"),
+             "1 1 0 0 0 107 2 100 1 1 1 0 1 1 0 1 100 0 0 0 0 1 1 0 1");
+    CHECK_EQ(last_line("point_light { position y intensity 2 }"), "104 0 1 0 2 2 2");
+    CHECK_EQ(last_line("point_light { position y intensity 2 falloff true }"), "101 0 1 0 2 2 2");
+    CHECK_EQ(last_line("spot_light { position y direction -y cutoff_angle 60 intensity 1 }"),
+             "109 0 1 0 0 -1 0 0.5 0 1 1 1");
+    CHECK_EQ(last_line("sphere_light { radius 1 intensity 1 }"), "110 16 0 0 0 1 1 1 1");
+    CHECK_EQ(last_line("directional_light { direction -y intensity 1 }"), "113 0 -1 0 1 1 1");
+    // Unions nest to the right; a difference takes the union of the rest from the first.
+    const std::string ball = "sphere { radius 1 surface { colour 1 kd 1 } }";
+    CHECK_EQ(compile_body(kCamera + "difference {" + ball + ball + ball + "}")
+                 .substr(compile_body(kCamera).size()),
+             std::string("22 1 1 0 0 0 100 1 1 1 0 1 1 0 1 20 1 1 0 0 0 100 1 1 1 0 1 1 0 1 "
+                         "1 1 0 0 0 100 1 1 1 0 1 1 0 1\n"));
+    // A default surface, then primitives without one take it (106).
+    CHECK_EQ(compile_body(kCamera + "default_surface surface { colour 1 kd 1 }\n"
+                                    "sphere { radius 1 }")
+                 .substr(compile_body(kCamera).size()),
+             std::string("105 100 1 1 1 0 1 1 0 1\n1 1 0 0 0 106\n"));
+}
+
+TEST(transforms_write_the_frames_that_map_points_alike) {
+    // Points mapped by the composed frame and by each transform in turn agree.
+    const rtpp::Frame t =
+        rtpp::compose(rtpp::translation({1, 2, 3}),
+                      rtpp::compose(rtpp::rotation(90, {0, 1, 0}), rtpp::scaling({2, 2, 2})));
+    const rt::Vec3 p{1, 0, 0};
+    CHECK_NEAR(t.point(p), (rt::Vec3{1, 2, 1}), 1e-15);  // scaled to 2, turned to -z, moved
+    CHECK_EQ(t.point(p).z, 1.0);                         // quarter turns are exact
+    rt_test::Random random(7);
+    for (int i = 0; i < 100; ++i) {
+        const rt::Vec3 axis = random.unit_vector();
+        const double angle = random.uniform(-360, 360);
+        const rtpp::Frame r = rtpp::rotation(angle, axis);
+        const rt::Vec3 q = random.in_box(3);
+        // A rotation keeps lengths and the axis, and turns by the angle.
+        CHECK_NEAR(rt::length(r.point(q)), rt::length(q), 1e-12);
+        CHECK_NEAR(r.point(axis), axis, 1e-12);
+    }
+    // In the language: transforms apply in the order written.
+    CHECK_EQ(last_line("sphere { radius 1 surface { colour 1 kd 1 } scale 2 rotate 90 about y "
+                       "translate <1, 2, 3> }"),
+             std::string("7 1 2 3 0 0 -2 0 2 0 2 0 0 1 1 0 0 0 100 1 1 1 0 1 1 0 1"));
+    CHECK_EQ(last_line("point_light { position x intensity 1 translate y }"),
+             std::string("112 0 1 0 1 0 0 0 1 0 0 0 1 104 1 0 0 1 1 1"));
+    CHECK_EQ(last_line("sphere { radius 1 surface checker { cell 1 a surface { colour 1 kd 1 } "
+                       "b surface { colour 0 kd 1 } scale 2 } }"),
+             std::string("1 1 0 0 0 111 0 0 0 2 0 0 0 2 0 0 0 2 107 1 100 1 1 1 0 1 1 0 1 100 0 "
+                         "0 0 0 1 1 0 1"));
+    // A group's transform composes with each member's.
+    CHECK_EQ(compile_body(kCamera + "group { sphere { radius 1 surface { colour 1 kd 1 } "
+                                    "translate x } scale 2 }")
+                 .substr(compile_body(kCamera).size()),
+             std::string("7 2 0 0 2 0 0 0 2 0 0 0 2 1 1 0 0 0 100 1 1 1 0 1 1 0 1\n"));
+}
+
+TEST(the_camera_writes_square_pixel_viewer_vectors) {
+    CHECK_EQ(compile_body(kCamera), std::string("102 0 0 5 0 0 0 1 0 0 0 1 0 4 4\n"));
+    // 90 degrees across a 2:1 image: x is tan 45 = 1 wide, y half that, perpendicular.
+    const std::string wide =
+        compile_body("camera { position <0, 0, 5> look_at <0, 0, 0> fov 90 size 200, 100 }");
+    CHECK_EQ(wide, std::string("102 0 0 5 0 0 0 1 0 0 0 0.5 0 200 100\n"));
+    // Looking down: y tilts back, perpendicular to the view; upright keeps it vertical.
+    const std::string down =
+        compile_body("camera { position <0, 3, 3> look_at <0, 0, 0> half_width 1 size 10, 10 }");
+    CHECK_EQ(down, std::string("102 0 3 3 0 0 0 1 0 0 0 0.7071067811865476 -0.7071067811865476 "
+                               "10 10\n"));
+    CHECK_EQ(compile_body("camera { position <0, 3, 3> look_at <0, 0, 0> half_width 1 size 10, "
+                          "10 upright true }"),
+             std::string("102 0 3 3 0 0 0 1 0 0 0 1 0 10 10\n"));
+}
+
+TEST(errors_name_their_place) {
+    const std::pair<std::string, std::string> cases[] = {
+        {"sphere { radius 1 surface { colour 1 kd 1 } }", "t.rts:1:46: no camera in the scene"},
+        {kCamera + "sphere { centre x surface { colour 1 kd 1 } }",
+         "t.rts:2:1: sphere: missing field 'radius'"},
+        {kCamera + "sphere { radius 1 }",
+         "t.rts:2:1: sphere: missing field 'surface' (and no default_surface is set)"},
+        {kCamera + "sphere {\n  radus 1 }",
+         "t.rts:3:3: a sphere has no field 'radus' (it has: "
+         "radius, centre, surface; translate, rotate, scale, "
+         "frame)"},
+        {kCamera + "sphere { radius <1, 2, 3> }",
+         "t.rts:2:17: sphere radius must be a number, got a vector"},
+        {kCamera + "sphre { }", "t.rts:2:1: unknown object kind 'sphre'"},
+        {kCamera + "let a = 1 +", "t.rts:2:12: expected a value, got end of file"},
+        {kCamera + "let a = (1 + 2", "t.rts:2:15: expected ')' to close the '(' at 2:9"},
+        {kCamera + "let a = <1, 2>", "t.rts:2:14: expected ',' between a vector's components"},
+        {kCamera + "let a = b", "t.rts:2:9: unknown name 'b'"},
+        {kCamera + "let a = 1 / 0", "t.rts:2:11: division by zero"},
+        {kCamera + "let a = 2x", "t.rts:2:9: a number may not run into a name"},
+        {kCamera + "let a = \"abc", "t.rts:2:9: unterminated string"},
+        {kCamera + "let a = 1 @", "t.rts:2:11: unexpected character '@'"},
+        {kCamera + "let a = foo(1)", "t.rts:2:9: unknown function 'foo'"},
+        {kCamera + "let a = sqrt(1, 2)", "t.rts:2:9: sqrt takes 1 argument, got 2"},
+        {kCamera + "sphere { radius 1", "t.rts:2:18: end of file inside sphere begun at 2:1"},
+        {kCamera + "for i = 0 to 3 step 0 { }", "t.rts:2:21: a loop's step must not be 0"},
+        {kCamera + kCamera, "t.rts:2:1: a second camera; a scene has exactly one"},
+        {kCamera + "surface { colour 1 kd 1 }", "t.rts:2:1: a surface surface on its own"},
+        {kCamera + "sphere { radius 1 box { min x max y } }",
+         "t.rts:2:19: a sphere cannot hold other objects"},
+        {kCamera + "union { sphere { radius 1 surface { colour 1 kd 1 } } }",
+         "t.rts:2:1: union needs at least two objects, got 1"},
+        {kCamera + "cone { axis y surface { colour 1 kd 1 } }",
+         "t.rts:2:1: cone: missing field 'alpha' (or 'angle')"},
+        {kCamera + "mesh { vertex x triangle <0, 0, 1> surface { colour 1 kd 1 } }",
+         "t.rts:2:17: mesh triangle indices must be whole numbers from 0 to 0"},
+        {kCamera + "translate x", "t.rts:2:1: translate belongs inside an object's"},
+        {kCamera + "let sphere = 1", "t.rts:2:1: 'sphere' is an object kind"},
+        {kCamera + "let for = 1", "t.rts:2:1: 'for' is a reserved word"},
+        {"camera { position x look_at x fov 90 size 4, 4 }",
+         "t.rts:1:1: camera look_at must differ from its position"},
+        {"camera { position x look_at y fov 180 size 4, 4 }",
+         "t.rts:1:31: camera fov must be between 0 and 180 degrees"},
+        {"camera { position x look_at y fov 90 size 4.5, 4 }",
+         "t.rts:1:43: camera size must be whole numbers from 1 to 16384, got 4.5"},
+    };
+    for (const auto& [source, message] : cases) CHECK_CONTAINS(error_of(source), message);
+}
+
+TEST(includes_resolve_and_report_their_chain) {
+    const fs::path dir = rt_test::work_dir("rtpp-include");
+    fs::create_directories(dir / "lib" / "more");
+    write_file(dir / "lib" / "colours.rts",
+               "let red = surface { colour <1, 0, 0> kd 1 }\n"
+               "include \"more/shapes.rts\"\n");
+    write_file(dir / "lib" / "more" / "shapes.rts", "let ball = sphere { radius 1 }\n");
+    write_file(dir / "scene.rts", kCamera + "include \"lib/colours.rts\"\nball { surface red }\n");
+    const std::string out = rtpp::compile_file((dir / "scene.rts").string());
+    CHECK_CONTAINS(out, "1 1 0 0 0 100 1 0 0 0 1 1 0 1");
+    // The search path: a file not beside the includer is found in -I's directory.
+    write_file(dir / "other.rts", kCamera + "include \"colours.rts\"\nball { surface red }\n");
+    rtpp::CompileOptions options;
+    options.include_dirs.push_back(dir / "lib");
+    CHECK_CONTAINS(rtpp::compile_file((dir / "other.rts").string(), options), "100 1 0 0");
+    CHECK_CONTAINS(error_of("include \"nowhere.rts\""),
+                   "t.rts:1:1: cannot read included file 'nowhere.rts'");
+    // An error in an included file names it and the chain of includes that led there.
+    write_file(dir / "lib" / "more" / "shapes.rts", "let ball = sphere { radius 1 / 0 }\n");
+    try {
+        rtpp::compile_file((dir / "scene.rts").string());
+        CHECK(false);
+    } catch (const rtpp::CompileError& e) {
+        const std::string m = e.what();
+        CHECK_CONTAINS(m, "shapes.rts:1:30: division by zero\n  included from ");
+        CHECK_CONTAINS(m,
+                       "colours.rts:2:1\n  included from " + (dir / "scene.rts").string() + ":2:1");
+    }
+    // A cycle is an error at the include that closes it.
+    write_file(dir / "a.rts", "include \"b.rts\"\n");
+    write_file(dir / "b.rts", "\ninclude \"a.rts\"\n");
+    try {
+        rtpp::compile_file((dir / "a.rts").string());
+        CHECK(false);
+    } catch (const rtpp::CompileError& e) {
+        CHECK_CONTAINS(e.what(), "b.rts:2:1: include cycle: 'a.rts' is already being read");
+    }
+}
+
+TEST(limits_stop_runaway_input) {
+    rtpp::CompileOptions small;
+    small.limits.loop_iterations = 1000;
+    small.limits.objects = 10;
+    small.limits.include_depth = 3;
+    small.limits.nesting = 20;
+    CHECK_CONTAINS(error_of(kCamera + "for i = 1 to 1e15 { }"),
+                   "t.rts:2:1: this loop would run 1e+15 times, more than the 20000000");
+    CHECK_CONTAINS(error_of(kCamera + "for i = 1 to 30 { for j = 1 to 40 { } }", small),
+                   "t.rts:2:19: this loop would run 40 times, more than the 1000");
+    CHECK_CONTAINS(error_of(kCamera + "for i = 1 to 20 { ambient { intensity 1 } }", small),
+                   "t.rts:2:19: more than 10 objects written");
+    CHECK_CONTAINS(
+        error_of(kCamera + "let a = " + std::string(30, '(') + "1" + std::string(30, ')'), small),
+        "nested more than 20 deep");
+    CHECK_CONTAINS(error_of("let s = \"" + std::string(5000, 'a') + "\""),
+                   "t.rts:1:9: string longer than 4096 characters");
+    const fs::path dir = rt_test::work_dir("rtpp-limits");
+    // (Built with join: g++ 12 warns falsely about "literal" + std::string chains.)
+    for (int i = 0; i < 5; ++i)
+        write_file(dir / rt_test::join('f', i, ".rts"),
+                   rt_test::join("include \"f", i + 1, ".rts\"\n"));
+    write_file(dir / "f5.rts", "");
+    try {
+        rtpp::compile_file((dir / "f0.rts").string(), small);
+        CHECK(false);
+    } catch (const rtpp::CompileError& e) {
+        CHECK_CONTAINS(e.what(), "f2.rts:1:1: includes nested more than 3 deep");
+    }
+}
+
+TEST(a_million_objects_compile_in_seconds) {
+    const auto start = std::chrono::steady_clock::now();
+    const std::string out =
+        rtpp::compile(kCamera +
+                          "let red = surface { colour <1, 0, 0> kd 1 }\n"
+                          "for i = 0 to 999 { for j = 0 to 999 {\n"
+                          "  sphere { radius 0.4 centre <i, 0, j> surface red } } }\n",
+                      "million.rts", ".");
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::cout << "  1,000,000 spheres: " << seconds << " s, " << out.size() / 1000000 << " MB\n";
+    CHECK(seconds < 20);
+    std::istringstream in(out);
+    CHECK_EQ(rt::SceneReader(in, "million", {}).read_scene().objects.size(), 1000000u);
+}
+
+TEST(rt_names_the_readable_source_through_line_markers) {
+    const fs::path dir = rt_test::work_dir("rtpp-markers");
+    // A degenerate triangle made by a loop: only rt finds it, and names the .rts line.
+    write_file(dir / "s.rts", kCamera +
+                                  "let m = surface { colour 1 kd 1 }\n"
+                                  "for i = 0 to 2 {\n"
+                                  "    triangle { vertex x vertex x * i vertex y surface m }\n"
+                                  "}\n");
+    const std::string command = "cd '" + dir.string() + "' && '" RTPP_BINARY "' s.rts -o s.in";
+    CHECK_EQ(std::system(command.c_str()), 0);
+    const rt_test::RunResult checked = rt_test::run_rt(dir, "-r s.in");
+    CHECK_EQ(checked.status, 1);
+    CHECK_CONTAINS(checked.err, "s.rts:4:");
+    CHECK_CONTAINS(checked.err, "triangle");
+}
+
+TEST(the_command_line_follows_rts_conventions) {
+    const fs::path dir = rt_test::work_dir("rtpp-cli");
+    const auto run = [&](const std::string& args) {
+        const std::string command = "cd '" + dir.string() + "' && '" RTPP_BINARY "' " + args +
+                                    " >out.txt 2>err.txt; echo $? >status.txt";
+        CHECK_EQ(std::system(command.c_str()), 0);
+        return std::atoi(read_file(dir / "status.txt").c_str());
+    };
+    write_file(dir / "ok.rts", kCamera);
+    write_file(dir / "bad.rts", "sphere {");
+    CHECK_EQ(run("ok.rts"), 0);
+    CHECK_CONTAINS(read_file(dir / "out.txt"), "102 0 0 5");
+    CHECK_EQ(run("< ok.rts"), 0);
+    CHECK_CONTAINS(read_file(dir / "out.txt"), "#line 1 \"<stdin>\"");
+    CHECK_EQ(run("ok.rts | '" RT_BINARY "' -r"), 0);
+    CHECK_CONTAINS(read_file(dir / "out.txt"), "<stdin>: 0 objects, 0 lights, 4x4");
+    write_file(dir / "keep.in", "old");
+    CHECK_EQ(run("bad.rts -o keep.in"), 1);
+    CHECK_CONTAINS(read_file(dir / "err.txt"), "bad.rts:1:9: end of file inside sphere");
+    CHECK_EQ(read_file(dir / "keep.in"), std::string("old"));
+    CHECK_EQ(run("ok.rts -o keep.in"), 0);
+    CHECK_CONTAINS(read_file(dir / "keep.in"), "102 0 0 5");
+    CHECK_EQ(run("--help"), 0);
+    CHECK_CONTAINS(read_file(dir / "out.txt"), "usage: rtpp");
+    CHECK_EQ(run("--version"), 0);
+    CHECK_CONTAINS(read_file(dir / "out.txt"), "rtpp ");
+    CHECK_EQ(run("--bogus"), 2);
+    CHECK_CONTAINS(read_file(dir / "err.txt"), "rtpp: unknown option '--bogus'");
+    CHECK_EQ(run("-I"), 2);
+    CHECK_EQ(run("missing.rts"), 1);
+    CHECK_CONTAINS(read_file(dir / "err.txt"), "missing.rts: cannot open");
+}
