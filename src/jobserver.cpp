@@ -54,8 +54,10 @@ JobserverAuth parse_makeflags(std::string_view makeflags) {
     JobserverAuth auth;
     const std::vector<std::string> words = makeflags_words(makeflags);
     // The first word holds the one-letter flags without a dash ("ns"), when there are any.
+    // make -n (print), -q (question) and -t (touch) run '+' lines too, but mean that nothing
+    // is to be made.
     if (!words.empty() && words[0][0] != '-' && words[0].find('=') == std::string::npos)
-        auth.dry_run = words[0].find('n') != std::string::npos;
+        auth.dry_run = words[0].find_first_of("nqt") != std::string::npos;
     for (const std::string& word : words) {
         if (word == "--") break;
         std::string_view value;

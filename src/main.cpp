@@ -169,7 +169,7 @@ int main(int argc, char** argv) {
     // The jobserver is read before rt opens any file (see JobserverClient).
     const char* makeflags = std::getenv("MAKEFLAGS");
     const rt::JobserverAuth auth = rt::parse_makeflags(makeflags != nullptr ? makeflags : "");
-    if (auth.dry_run) return kExitOk;  // make -n runs '+' lines too: they must do nothing
+    if (auth.dry_run) return kExitOk;  // make -n, -q and -t run '+' lines too
     rt::interrupt::install_handlers();
     // Declared before anything that can fail, so its tokens go back on every exit path.
     std::optional<rt::JobserverClient> jobs;

@@ -81,6 +81,10 @@ TEST(makeflags_are_parsed) {
     CHECK(rt::parse_makeflags("ns -j2 --jobserver-auth=3,4").dry_run);
     CHECK(!rt::parse_makeflags(" -j2 --jobserver-auth=3,4").dry_run);
     CHECK(!rt::parse_makeflags("--no-print-directory").dry_run);
+    // make -q (question) and -t (touch) run '+' lines too, and mean nothing is to be made.
+    CHECK(rt::parse_makeflags("q -- N=4").dry_run);
+    CHECK(rt::parse_makeflags("st").dry_run);
+    CHECK(!rt::parse_makeflags("s -j2").dry_run);
 }
 
 TEST(the_client_takes_free_tokens_and_gives_the_same_back) {

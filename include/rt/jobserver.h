@@ -14,7 +14,7 @@ struct JobserverAuth {
     int read_fd = -1;  // pipe: descriptors rt inherited from make
     int write_fd = -1;
     std::string fifo;      // fifo: the named pipe's path (make 4.4)
-    bool dry_run = false;  // make -n: do nothing
+    bool dry_run = false;  // make -n, -q or -t: do nothing
 };
 
 // Reads --jobserver-auth=R,W, --jobserver-auth=fifo:PATH and the older --jobserver-fds=R,W
