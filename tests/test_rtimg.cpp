@@ -15,17 +15,6 @@ using namespace rt_test;
 
 namespace {
 
-RunResult run_rtimg(const fs::path& dir, const std::string& args) {
-    const std::string command = "cd '" + dir.string() + "' && '" RTIMG_BINARY "' " + args +
-                                " >rtimg.out 2>rtimg.err; echo $? >rtimg.status";
-    RunResult result;
-    if (std::system(command.c_str()) != 0) return result;
-    result.status = std::atoi(read_file(dir / "rtimg.status").c_str());
-    result.out = read_file(dir / "rtimg.out");
-    result.err = read_file(dir / "rtimg.err");
-    return result;
-}
-
 // A 2 x 2 binary PPM from its twelve samples.
 std::string ppm(const std::vector<int>& samples) {
     std::string out = "P6\n2 2\n255\n";
