@@ -245,3 +245,25 @@ TEST(info_describes_an_image) {
     CHECK_CONTAINS(run_rtimg(dir, "info g.pfm").out, "red  1  1  1\n");
     CHECK_EQ(run_rtimg(dir, "info missing.png").status, 1);
 }
+
+TEST(png_files_another_encoder_wrote_decode_to_its_ppm_pixels) {
+    const fs::path dir = fs::path(RT_SOURCE_DIR) / "tests" / "fixtures" / "png";
+    const struct {
+        const char* png;
+        const char* reference;
+        int bits;
+        int channels;
+    } cases[] = {
+        {"rgb-q0.png", "source.ppm", 8, 3},  {"rgb-q50.png", "source.ppm", 8, 3},
+        {"rgb-q95.png", "source.ppm", 8, 3}, {"rgb-interlaced.png", "source.ppm", 8, 3},
+        {"grey.png", "grey.pgm", 8, 1},      {"palette.png", "palette.ppm", 8, 3},
+        {"rgb16.png", "rgb16.ppm", 16, 3},   {"grey16-interlaced.png", "grey16.pgm", 16, 1}};
+    for (const auto& c : cases) {
+        const rt::ImageFile png = rt::read_image_file(dir / c.png);
+        const rt::ImageFile reference = rt::read_image_file(dir / c.reference);
+        CHECK_EQ(png.bits(), c.bits);
+        CHECK_EQ(png.channels(), c.channels);
+        if (png.samples.bytes != reference.samples.bytes)
+            record_failure(__FILE__, __LINE__, join(c.png, " does not decode to ", c.reference));
+    }
+}
