@@ -78,6 +78,29 @@ ImageSize parse_size(const std::string& text) {
     return size;
 }
 
+// x0,x1,y0,y1: half-open pixel bounds, as pbrt's --pixelbounds. Whether they fit the image
+// is known only once the scene is read.
+PixelRect parse_region(const std::string& text) {
+    const auto bad = [&] {
+        return UsageError{"--region expects x0,x1,y0,y1 (whole numbers, x0 < x1, y0 < y1), got '" +
+                          text + "'"};
+    };
+    int v[4] = {};
+    const char* p = text.data();
+    const char* end = p + text.size();
+    for (int i = 0; i < 4; ++i) {
+        if (i > 0 && (p == end || *p++ != ',')) throw bad();
+        const auto [ptr, ec] = std::from_chars(p, end, v[i]);
+        if (ec != std::errc() || v[i] < 0) throw bad();
+        p = ptr;
+    }
+    if (p != end) throw bad();
+    const PixelRect region{v[0], v[2], v[1], v[3]};
+    if (region.empty())
+        throw UsageError{"--region " + text + " is empty: it needs x0 < x1 and y0 < y1"};
+    return region;
+}
+
 ImageFormat parse_format(const std::string& text) {
     if (const auto format = parse_format_name(text)) return *format;
     throw UsageError{"-f expects ppm, png or pfm, got '" + text + "'"};
@@ -169,6 +192,11 @@ options:
                       the image is the same whatever N is
       --size WxH      render W x H pixels instead of the viewer's resolution; the
                       field of view stays (rt warns when pixels become non-square)
+      --region x0,x1,y0,y1
+                      render only columns x0 to x1-1 and rows y0 to y1-1 of the
+                      full image, each pixel exactly as the whole render has it;
+                      the file records the region and the full size (PPM and
+                      PNG only), for rtimg merge
   -r, --read-only     read and check the scene, print a summary, render nothing
   -q, --quiet         print nothing on stderr but errors
       --progress      show progress even when stderr is not a terminal (a line
@@ -283,6 +311,8 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
             r.threads = parse_int("-j", take_value(), 1, kMaxThreadsOption);
         } else if (arg == "--size") {
             cl.size = parse_size(take_value());
+        } else if (arg == "--region") {
+            cl.region = parse_region(take_value());
         } else if (arg == "-r" || arg == "--read-only") {
             flag(cl.read_only, true);
         } else if (arg == "-q" || arg == "--quiet") {
@@ -322,9 +352,24 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     }
     if (cl.render.adaptive_threshold && !have_samples) cl.render.samples = kDefaultAdaptiveSamples;
     cl.image.format = format ? *format : format_of_output(cl.output);
+    if (cl.image.format == ImageFormat::pfm && cl.region)
+        throw UsageError{"--region needs PPM or PNG output: PFM has no place to record the region"};
     if (cl.image.format == ImageFormat::pfm && have_bits)
         throw UsageError{"--bits does not apply to PFM, which always holds 32-bit floats"};
     return cl;
+}
+
+std::optional<std::string> region_problem(const PixelRect& region, int width, int height) {
+    if (PixelRect{0, 0, width, height}.contains(region)) return std::nullopt;
+    return "--region " + std::to_string(region.x0) + "," + std::to_string(region.x1) + "," +
+           std::to_string(region.y0) + "," + std::to_string(region.y1) + " is outside the " +
+           std::to_string(width) + "x" + std::to_string(height) + " image";
+}
+
+void add_region_metadata(ImageMetadata& metadata, const PixelRect& region, int width, int height) {
+    metadata.set("Region", std::to_string(region.x0) + "," + std::to_string(region.x1) + "," +
+                               std::to_string(region.y0) + "," + std::to_string(region.y1));
+    metadata.set("Full-Size", std::to_string(width) + "x" + std::to_string(height));
 }
 
 ImageMetadata image_metadata(const CommandLine& cl) {
@@ -337,8 +382,8 @@ ImageMetadata image_metadata(const CommandLine& cl) {
                           " -m " + mode_name(r.mode) + " -s " + std::to_string(r.samples);
     if (r.adaptive_threshold) options += " -a " + number_text(*r.adaptive_threshold);
     if (cl.size)
-        options += " --size " + std::to_string(cl.size->width) + "x" +
-                   std::to_string(cl.size->height);
+        options +=
+            " --size " + std::to_string(cl.size->width) + "x" + std::to_string(cl.size->height);
     const std::pair<bool, const char*> parts[] = {
         {r.ambient, "--no-ambient"},       {r.diffuse, "--no-diffuse"},
         {r.specular, "--no-specular"},     {r.shadows, "--no-shadows"},

@@ -34,6 +34,11 @@ constexpr int kExitOk = 0;
 constexpr int kExitError = 1;  // a scene, texture or input/output error
 constexpr int kExitUsage = 2;  // the command line made no sense
 
+// A command line that makes sense only once the scene is read (--region outside the image).
+struct LateUsageError {
+    std::string message;
+};
+
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
@@ -93,6 +98,9 @@ int run(const rt::CommandLine& cl, int threads) {
     std::vector<std::filesystem::path> textures;
     rt::Scene scene = rt::read_scene_file(cl.input, threads, &statistics.times, &textures);
     if (cl.size) apply_size(scene.viewer, *cl.size, cl.quiet);
+    const rt::PixelRect region = cl.region.value_or(rt::image_rect(scene.viewer));
+    if (const auto problem = rt::region_problem(region, scene.viewer.xres, scene.viewer.yres))
+        throw LateUsageError{*problem};
     if (cl.read_only) {
         std::ostringstream summary;
         const std::string name = cl.input == "-" ? "<stdin>" : cl.input;
@@ -108,6 +116,8 @@ int run(const rt::CommandLine& cl, int threads) {
     // and are only replaced once complete. The files the render reads are never written over.
     rt::ImageEncoding encoding = cl.image;
     encoding.metadata = rt::image_metadata(cl);
+    if (cl.region)
+        rt::add_region_metadata(encoding.metadata, region, scene.viewer.xres, scene.viewer.yres);
     std::vector<std::filesystem::path> inputs = textures;
     inputs.insert(inputs.begin(), cl.input == "-" ? std::string() : cl.input);  // scene first
     rt::OutputFile output(cl.output, inputs);
@@ -135,7 +145,7 @@ int run(const rt::CommandLine& cl, int threads) {
                                                    : rt::ProgressDisplay::Style::lines,
                         std::cerr);
     auto start = Clock::now();
-    const rt::Raster image = rt::render(scene, options, &statistics.rays, &progress);
+    const rt::Raster image = rt::render_region(scene, options, region, &statistics.rays, &progress);
     statistics.times.render = seconds_since(start);
     if (display) display->finish();
 
@@ -145,7 +155,7 @@ int run(const rt::CommandLine& cl, int threads) {
     // Written only once the image is: a rule for an image that failed would be a lie.
     if (depfile) depfile->write_bytes(rule);
     if (cl.stats) {
-        statistics.threads = std::clamp(threads, 1, scene.viewer.yres);
+        statistics.threads = std::clamp(threads, 1, region.height());
         statistics.objects = scene.objects.size();
         statistics.lights = scene.lights.size();
         statistics.peak_memory_bytes = rt::peak_memory_bytes();
@@ -180,6 +190,9 @@ int main(int argc, char** argv) {
             std::cerr << "rt: " << threads << (threads == 1 ? " thread" : " threads") << ", "
                       << rt::interrupt::tokens_held() << " jobserver tokens\n";
         return run(cl, threads);
+    } catch (const LateUsageError& e) {
+        std::cerr << "rt: " << e.message << "\nTry 'rt --help' for more information.\n";
+        return kExitUsage;
     } catch (const rt::Error& e) {
         std::cerr << e.what() << "\n";
     } catch (const std::bad_alloc&) {

@@ -230,16 +230,31 @@ int worker_threads(int requested) {
 
 namespace {
 
-// A rectangle of pixels: columns [x0, x1), rows [y0, y1).
-struct PixelRect {
-    int x0, y0, x1, y1;
+// This rectangle grown by one pixel on every side, but kept within `bounds`.
+PixelRect with_margin(const PixelRect& r, const PixelRect& bounds) {
+    return {std::max(r.x0 - 1, bounds.x0), std::max(r.y0 - 1, bounds.y0),
+            std::min(r.x1 + 1, bounds.x1), std::min(r.y1 + 1, bounds.y1)};
+}
 
-    int width() const { return x1 - x0; }
-    // This rectangle grown by one pixel on every side, but kept within `bounds`.
-    PixelRect with_margin(const PixelRect& bounds) const {
-        return {std::max(x0 - 1, bounds.x0), std::max(y0 - 1, bounds.y0),
-                std::min(x1 + 1, bounds.x1), std::min(y1 + 1, bounds.y1)};
+// A raster that holds the pixels of `rect` only, addressed by full-image coordinates: a
+// region's pixels are computed at their own (x, y), so they are the whole render's pixels.
+class Window {
+  public:
+    explicit Window(const PixelRect& rect) : rect_(rect), raster_(rect.width(), rect.height()) {}
+    Spectrum at(int x, int y) const { return raster_.at(x - rect_.x0, y - rect_.y0); }
+    void set(int x, int y, const Spectrum& s) { raster_.set(x - rect_.x0, y - rect_.y0, s); }
+    // The pixels of `part` (within this window) as a raster of their own.
+    Raster crop(const PixelRect& part) const {
+        if (part == rect_) return raster_;
+        Raster out(part.width(), part.height());
+        for (int y = part.y0; y < part.y1; ++y)
+            for (int x = part.x0; x < part.x1; ++x) out.set(x - part.x0, y - part.y0, at(x, y));
+        return out;
     }
+
+  private:
+    PixelRect rect_;
+    Raster raster_;
 };
 
 // Calls work(tracer, y) for every row y of `rect`, rows shared among the tracers' threads
@@ -277,7 +292,7 @@ bool differ(const Spectrum& a, const Spectrum& b, double threshold) {
 
 // Whether pixel (x, y) differs from one of its 4-connected neighbours within `known`, the
 // pixels whose one-ray values `one_ray` holds.
-bool needs_supersampling(const Raster& one_ray, const PixelRect& known, int x, int y,
+bool needs_supersampling(const Window& one_ray, const PixelRect& known, int x, int y,
                          double threshold) {
     const Spectrum here = one_ray.at(x, y);
     return (x > known.x0 && differ(here, one_ray.at(x - 1, y), threshold)) ||
@@ -288,17 +303,17 @@ bool needs_supersampling(const Raster& one_ray, const PixelRect& known, int x, i
 
 // Adaptive supersampling of `rect` into `raster`. The decisions are taken from one-ray values
 // only, never from what a thread has seen, so the image is the same on any number of threads.
-// They need the one-ray values of a one-pixel margin around `rect` (within the image): a
-// region of the image (a later issue) rendered this way decides at its edges exactly as the
-// whole image does.
+// They need the one-ray values of a one-pixel margin around `rect` (within the image), which
+// `raster` must cover: a region of the image rendered this way decides at its edges exactly
+// as the whole image does.
 void render_adaptive(const std::vector<Tracer>& tracers, const PixelRect& rect,
-                     const PixelRect& image, double threshold, Raster& raster,
+                     const PixelRect& image, double threshold, Window& raster,
                      RenderProgress* progress) {
-    const PixelRect known = rect.with_margin(image);
+    const PixelRect known = with_margin(rect, image);
     // The one-ray pass and the grid pass trace; deciding is quick and not counted.
     if (progress != nullptr)
-        progress->rows_total.store(static_cast<std::uint64_t>((known.y1 - known.y0) +
-                                                              (rect.y1 - rect.y0)));
+        progress->rows_total.store(
+            static_cast<std::uint64_t>((known.y1 - known.y0) + rect.height()));
     for_each_row(
         tracers, known,
         [&](const Tracer& tracer, int y) {
@@ -307,8 +322,7 @@ void render_adaptive(const std::vector<Tracer>& tracers, const PixelRect& rect,
         progress);
     // Decided for the whole rectangle before any pixel is overwritten by its grid's mean. Bytes,
     // not vector<bool>: threads write neighbouring flags.
-    std::vector<unsigned char> supersample(static_cast<std::size_t>(rect.width()) *
-                                           (rect.y1 - rect.y0));
+    std::vector<unsigned char> supersample(static_cast<std::size_t>(rect.width()) * rect.height());
     const auto flag = [&](int x, int y) -> unsigned char& {
         return supersample[static_cast<std::size_t>(y - rect.y0) * rect.width() + (x - rect.x0)];
     };
@@ -332,26 +346,35 @@ void render_adaptive(const std::vector<Tracer>& tracers, const PixelRect& rect,
 
 Raster render(const Scene& scene, const RenderOptions& options, RenderStats* stats,
               RenderProgress* progress) {
-    const Viewer& v = scene.viewer;
-    Raster raster(v.xres, v.yres);
-    const PixelRect image{0, 0, v.xres, v.yres};
-    const int threads = std::clamp(worker_threads(options.threads), 1, v.yres);
+    return render_region(scene, options, image_rect(scene.viewer), stats, progress);
+}
+
+Raster render_region(const Scene& scene, const RenderOptions& options, const PixelRect& region,
+                     RenderStats* stats, RenderProgress* progress) {
+    const PixelRect image = image_rect(scene.viewer);
+    if (region.empty() || !image.contains(region))
+        throw std::invalid_argument("render_region: the region is empty or outside the image");
+    const int threads = std::clamp(worker_threads(options.threads), 1, region.height());
     // One tracer per thread, each counting its own rays; merged once all have joined.
     const std::vector<Tracer> tracers(static_cast<std::size_t>(threads), Tracer(scene, options));
+    // Adaptive decisions need the one-ray values of a margin around the region.
+    const PixelRect canvas = options.adaptive_threshold ? with_margin(region, image) : region;
+    Window raster(canvas);
     if (options.adaptive_threshold) {
-        render_adaptive(tracers, image, image, *options.adaptive_threshold, raster, progress);
+        render_adaptive(tracers, region, image, *options.adaptive_threshold, raster, progress);
     } else {
-        if (progress != nullptr) progress->rows_total.store(static_cast<std::uint64_t>(v.yres));
+        if (progress != nullptr)
+            progress->rows_total.store(static_cast<std::uint64_t>(region.height()));
         for_each_row(
-            tracers, image,
+            tracers, region,
             [&](const Tracer& tracer, int y) {
-                for (int x = 0; x < v.xres; ++x) raster.set(x, y, tracer.pixel(x, y));
+                for (int x = region.x0; x < region.x1; ++x) raster.set(x, y, tracer.pixel(x, y));
             },
             progress);
     }
     if (stats != nullptr)
         for (const Tracer& tracer : tracers) *stats += tracer.stats();
-    return raster;
+    return raster.crop(region);
 }
 
 }  // namespace rt

@@ -45,16 +45,27 @@ inline std::filesystem::path work_dir(const std::string& name) {
     return dir;
 }
 
-// Runs `rt <args>` in `dir` (args are passed to the shell as written).
-inline RunResult run_rt(const std::filesystem::path& dir, const std::string& args) {
-    const std::string command = "cd '" + dir.string() + "' && '" RT_BINARY "' " + args +
-                                " >rt.out 2>rt.err; echo $? >rt.status";
+// Runs `program <args>` in `dir` (args are passed to the shell as written); its output goes
+// through files named after the program's base name.
+inline RunResult run_program(const std::string& program, const std::filesystem::path& dir,
+                             const std::string& args) {
+    const std::string base = std::filesystem::path(program).filename().string();
+    const std::string command = "cd '" + dir.string() + "' && '" + program + "' " + args + " >" +
+                                base + ".out 2>" + base + ".err; echo $? >" + base + ".status";
     RunResult result;
     if (std::system(command.c_str()) != 0) return result;
-    result.status = std::atoi(read_file(dir / "rt.status").c_str());
-    result.out = read_file(dir / "rt.out");
-    result.err = read_file(dir / "rt.err");
+    result.status = std::atoi(read_file(dir / (base + ".status")).c_str());
+    result.out = read_file(dir / (base + ".out"));
+    result.err = read_file(dir / (base + ".err"));
     return result;
+}
+
+inline RunResult run_rt(const std::filesystem::path& dir, const std::string& args) {
+    return run_program(RT_BINARY, dir, args);
+}
+
+inline RunResult run_rtimg(const std::filesystem::path& dir, const std::string& args) {
+    return run_program(RTIMG_BINARY, dir, args);
 }
 
 }  // namespace rt_test

@@ -1,6 +1,8 @@
 // Golden images: every scene in scenes/ renders, and matches its image in tests/golden/
 // within a small tolerance. Goldens catch regressions; the other tests prove correctness.
 //
+// The comparison is rtimg diff's (rt::compare_images): a failing scene leaves its render and
+// a heat map in build/tests/work/golden/, and the message says where.
 // To regenerate after an intended change, run:  build/tests/test_golden --update
 // and look at the new images before committing them.
 #include <algorithm>
@@ -12,6 +14,7 @@
 #include <vector>
 
 #include "check.h"
+#include "rt/image_compare.h"
 #include "rt/ppm.h"
 #include "rt/reader.h"
 #include "rt/trace.h"
@@ -21,8 +24,9 @@ namespace fs = std::filesystem;
 namespace {
 
 // A pixel "differs" when a component is more than this many levels (of 255) away: slack for
-// floating-point differences between compilers.
-constexpr int kLevelTolerance = 2;
+// a C library whose pow, exp or sqrt rounds differently (docs/rtimg.md, SAME BYTES). Builds
+// with g++ and clang on one machine give the same bytes (.ci/compare-compilers).
+constexpr double kLevelTolerance = 2;
 // Pixels on an edge may flip between two objects; allow this fraction of them to differ.
 constexpr double kDifferingPixelFraction = 0.002;
 
@@ -74,33 +78,37 @@ TEST(every_scene_matches_its_golden_image) {
                                     rt_test::join(golden, " is missing: run test_golden --update"));
             continue;
         }
-        const rt::Image expected = rt::read_ppm(golden);
-        const rt::Image actual = [&] {
-            const fs::path tmp = fs::path(RT_TEST_WORK_DIR) / "golden-actual.ppm";
-            std::ofstream(tmp, std::ios::binary) << image;
-            return rt::read_ppm(tmp);
-        }();
-        if (expected.width != actual.width || expected.height != actual.height) {
-            rt_test::record_failure(__FILE__, __LINE__, rt_test::join(file, ": size changed"));
+        const rt::ImageFile expected = rt::read_image_file(golden);
+        const rt::ImageFile actual = rt::decode_image(image);
+        const fs::path failures = fs::path(RT_TEST_WORK_DIR) / "golden";
+        const std::string stem = file.stem().string();
+        if (expected.width() != actual.width() || expected.height() != actual.height()) {
+            fs::create_directories(failures);
+            std::ofstream(failures / (stem + ".ppm"), std::ios::binary) << image;
+            rt_test::record_failure(__FILE__, __LINE__,
+                                    rt_test::join(file, ": size changed; the render is in ",
+                                                  failures / (stem + ".ppm")));
             continue;
         }
-        std::size_t differing = 0;
-        double worst = 0;
-        for (std::size_t p = 0; p < actual.values.size(); p += 3) {
-            double diff = 0;
-            for (std::size_t c = 0; c < 3; ++c)
-                diff = std::max(diff, std::fabs(static_cast<double>(actual.values[p + c]) -
-                                                static_cast<double>(expected.values[p + c])));
-            worst = std::max(worst, diff);
-            if (diff * 255 > kLevelTolerance + 0.5) ++differing;
-        }
-        const double fraction =
-            static_cast<double>(differing) * 3 / static_cast<double>(actual.values.size());
-        std::cout << "  " << file.filename().string() << ": " << differing
-                  << " pixels differ, worst " << worst * 255 << " levels\n";
-        if (fraction > kDifferingPixelFraction)
+        const rt::ImageDifference d = rt::compare_images(actual, expected, kLevelTolerance);
+        std::cout << "  " << file.filename().string() << ": " << d.differing
+                  << " pixels differ, worst " << d.largest << " levels\n";
+        if (d.fraction() > kDifferingPixelFraction) {
+            // Left for a person to look at: what rendered, and where it differs.
+            fs::create_directories(failures);
+            const fs::path rendered = failures / (stem + ".ppm");
+            const fs::path heat = failures / (stem + "-diff.png");
+            std::ofstream(rendered, std::ios::binary) << image;
+            std::ofstream(heat, std::ios::binary)
+                << rt::encode_png(rt::heat_map(actual, expected, kLevelTolerance), {});
             rt_test::record_failure(
                 __FILE__, __LINE__,
-                rt_test::join(file, ": ", differing, " pixels differ from the golden image"));
+                rt_test::join(file, ": ", d.differing,
+                              " pixels differ from the golden image by more than ", kLevelTolerance,
+                              " levels (largest ", d.largest, "); the render is ", rendered,
+                              ", the heat map ", heat, "; compare with: rtimg diff --tolerance ",
+                              kLevelTolerance, " --max-fraction ", kDifferingPixelFraction, " ",
+                              rendered, " ", golden));
+        }
     }
 }

@@ -19,13 +19,16 @@ struct ImageSize {
 struct CommandLine {
     RenderOptions render;
     std::optional<ImageSize> size;  // overrides the viewer's resolution
+    // --region: render only these pixels of the full image; checked against its size once
+    // the scene is read (region_problem).
+    std::optional<PixelRect> region;
     std::string input = "-";   // the scene; "-" is standard input
     std::string output = "-";  // the image; "-" is standard output
     // The file's format (from -f, else the output's extension, else PPM), bits and gamma;
     // its metadata is filled in from the rest by image_metadata().
     ImageEncoding image;
     bool metadata = true;  // --no-metadata turns it off
-    std::string depfile;       // -M: where to write a make rule; empty for none
+    std::string depfile;   // -M: where to write a make rule; empty for none
     bool read_only = false;
     bool quiet = false;     // -q: nothing on stderr but errors
     bool progress = false;  // --progress: progress lines even when stderr is not a terminal
@@ -45,6 +48,13 @@ CommandLine parse_command_line(const std::vector<std::string>& args);
 // (the scene file as named, "<stdin>" for standard input) and "Options" (every option that
 // changes pixels, with its value, defaults included), or nothing under --no-metadata.
 ImageMetadata image_metadata(const CommandLine& cl);
+
+// Why --region does not fit a width x height image, or nothing when it fits.
+std::optional<std::string> region_problem(const PixelRect& region, int width, int height);
+
+// The metadata a region's file records besides image_metadata, always (rtimg merge needs it):
+// "Region" -> "x0,x1,y0,y1" and "Full-Size" -> "WxH", the full image's size.
+void add_region_metadata(ImageMetadata& metadata, const PixelRect& region, int width, int height);
 
 // The text of --help.
 const char* usage_text();

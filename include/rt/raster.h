@@ -9,6 +9,19 @@
 
 namespace rt {
 
+// A rectangle of pixels: columns [x0, x1), rows [y0, y1), in the full image's coordinates.
+struct PixelRect {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+
+    int width() const { return x1 - x0; }
+    int height() const { return y1 - y0; }
+    bool empty() const { return x1 <= x0 || y1 <= y0; }
+    bool contains(const PixelRect& r) const {
+        return r.x0 >= x0 && r.y0 >= y0 && r.x1 <= x1 && r.y1 <= y1;
+    }
+    bool operator==(const PixelRect&) const = default;
+};
+
 class Raster {
   public:
     Raster(int width, int height)

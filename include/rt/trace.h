@@ -122,4 +122,14 @@ struct RenderProgress {
 Raster render(const Scene& scene, const RenderOptions& options, RenderStats* stats = nullptr,
               RenderProgress* progress = nullptr);
 
+// The viewer's whole image as a rectangle.
+inline PixelRect image_rect(const Viewer& v) { return {0, 0, v.xres, v.yres}; }
+
+// Renders only `region` (within the viewer's image, not empty; std::invalid_argument
+// otherwise) into a raster of its size. Each pixel is traced at its own place in the full
+// image, and adaptive decisions see the one-ray values of a one-pixel margin around the
+// region, so every pixel equals the same pixel of render(), whatever the thread count.
+Raster render_region(const Scene& scene, const RenderOptions& options, const PixelRect& region,
+                     RenderStats* stats = nullptr, RenderProgress* progress = nullptr);
+
 }  // namespace rt

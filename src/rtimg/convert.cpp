@@ -1,0 +1,46 @@
+// rtimg convert IN OUT: another format, bit depth or gamma; the metadata comes along.
+#include "rt/image_file.h"
+#include "rt/output_file.h"
+#include "rtimg.h"
+
+namespace rtimg {
+
+int convert(const std::vector<std::string>& args) {
+    const Arguments a = parse_arguments(args, {"--bits", "--gamma"}, {"--plain"});
+    if (a.files.size() != 2) throw UsageError{"convert needs two files: rtimg convert IN OUT"};
+    rt::ImageEncoding encoding;
+    encoding.format = output_format(a.files[1]);
+    std::optional<rt::Gamma> gamma = rt::Gamma{};
+    if (a.has("--gamma")) {
+        gamma = rt::parse_gamma(a.values.at("--gamma"));
+        if (!gamma)
+            throw UsageError{"--gamma expects linear, srgb or a number > 0, got '" +
+                             a.values.at("--gamma") + "'"};
+    }
+    encoding.gamma = *gamma;
+    if (a.has("--bits")) {
+        const std::string& bits = a.values.at("--bits");
+        if (bits != "8" && bits != "16")
+            throw UsageError{"--bits expects 8 or 16, got '" + bits + "'"};
+        if (encoding.format == rt::ImageFormat::pfm)
+            throw UsageError{"--bits does not apply to PFM, which always holds 32-bit floats"};
+        encoding.bits = bits == "8" ? 8 : 16;
+    }
+    const bool plain = a.has("--plain");
+    if (plain && encoding.format != rt::ImageFormat::ppm)
+        throw UsageError{"--plain applies to PPM output only"};
+
+    const rt::ImageFile in = rt::read_image_file(a.files[0]);
+    if (!a.has("--bits") && in.format != rt::ImageFormat::pfm) encoding.bits = in.bits();
+    encoding.metadata = in.metadata;
+    const rt::Raster raster = rt::to_raster(in);
+    rt::OutputFile out(a.files[1], {a.files[0]});
+    if (plain)
+        out.write_bytes(rt::encode_ppm_plain(rt::quantize(raster, encoding.bits, encoding.gamma),
+                                             encoding.metadata));
+    else
+        out.write_bytes(rt::encode_image(raster, encoding));
+    return kExitOk;
+}
+
+}  // namespace rtimg

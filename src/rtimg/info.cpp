@@ -1,0 +1,72 @@
+// rtimg info FILE: what an image is, what made it, and the range of each channel.
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+#include <limits>
+
+#include "rt/image_merge.h"
+#include "rtimg.h"
+
+namespace rtimg {
+
+namespace {
+
+std::string number(double v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.6g", v);
+    return buffer;
+}
+
+const char* channel_names(int channels, int c) {
+    static const char* const names[4][4] = {
+        {"grey"}, {"grey", "alpha"}, {"red", "green", "blue"}, {"red", "green", "blue", "alpha"}};
+    return names[channels - 1][c];
+}
+
+}  // namespace
+
+int info(const std::vector<std::string>& args) {
+    const Arguments a = parse_arguments(args, {}, {});
+    if (a.files.size() != 1) throw UsageError{"info needs one image: rtimg info FILE"};
+    const rt::ImageFile f = rt::read_image_file(a.files[0]);
+    std::cout << "file: " << a.files[0] << "\n"
+              << "format: " << rt::format_name(f.format) << " (" << f.variant << ")\n"
+              << "size: " << f.width() << "x" << f.height() << "\n"
+              << "bit depth: " << f.bits() << (f.format == rt::ImageFormat::pfm ? " (float)" : "")
+              << ", " << f.channels() << (f.channels() == 1 ? " channel" : " channels") << "\n";
+    if (const auto region = rt::recorded_region(f))
+        std::cout << "region: " << region->rect.x0 << "," << region->rect.x1 << ","
+                  << region->rect.y0 << "," << region->rect.y1 << " of a " << region->full_width
+                  << "x" << region->full_height << " image\n";
+    else
+        std::cout << "region: none (a whole image)\n";
+    const std::string* software = f.metadata.find("Software");
+    std::cout << "made by: " << (software ? *software : "unknown") << "\n";
+    for (const auto& [key, value] : f.metadata.entries)
+        if (key != "Software" && key != "Region" && key != "Full-Size")
+            std::cout << key << ": " << value << "\n";
+    // Samples as stored (0 to 255 or 65535), or PFM's floats.
+    std::cout << "channel  min  max  mean\n";
+    for (int c = 0; c < f.channels(); ++c) {
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        long double sum = 0;
+        for (int y = 0; y < f.height(); ++y)
+            for (int x = 0; x < f.width(); ++x) {
+                const double v = f.format == rt::ImageFormat::pfm
+                                     ? f.value(x, y, c)
+                                     : static_cast<double>(f.samples.sample(x, y, c));
+                lo = std::min(lo, v);
+                hi = std::max(hi, v);
+                sum += v;
+            }
+        const double mean = static_cast<double>(
+            sum / (static_cast<long double>(f.width()) * static_cast<long double>(f.height())));
+        std::cout << channel_names(f.channels(), c) << "  " << number(lo) << "  " << number(hi)
+                  << "  " << number(mean) << "\n";
+    }
+    std::cout.flush();
+    if (!std::cout) throw std::runtime_error("cannot write to standard output");
+    return kExitOk;
+}
+
+}  // namespace rtimg

@@ -1,0 +1,50 @@
+// rtimg's commands: each takes its arguments (after the command's name) and returns the exit
+// status; main() dispatches and turns exceptions into messages.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "rt/image_io.h"
+
+namespace rtimg {
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFail = 1;   // diff: the images differ too much; others: an error
+inline constexpr int kExitUsage = 2;  // the command line made no sense (diff: any error)
+
+struct UsageError {
+    std::string message;
+};
+
+// Positional arguments and --option values (-o is --output), "--name=value" or "--name value".
+struct Arguments {
+    std::vector<std::string> files;
+    std::map<std::string, std::string> values;
+    bool has(const std::string& option) const { return values.count(option) != 0; }
+};
+// `valued` lists the long options that take a value, `flags` those that take none; anything
+// else starting with '-' is a usage error.
+Arguments parse_arguments(const std::vector<std::string>& args,
+                          const std::vector<std::string>& valued,
+                          const std::vector<std::string>& flags);
+// A number >= 0 given to `option`.
+double parse_nonnegative(const std::string& option, const std::string& text);
+// The format an output file's name asks for (.ppm, .pgm, .png, .pfm).
+rt::ImageFormat output_format(const std::string& path);
+// Writes samples in the format `path` names (PPM, plain PPM with `plain`, or PNG), safely
+// (rt::OutputFile), never over one of `inputs`.
+void write_samples(const std::string& path, const rt::SampleImage& image,
+                   const rt::ImageMetadata& metadata, bool plain,
+                   const std::vector<std::filesystem::path>& inputs);
+
+int diff(const std::vector<std::string>& args);
+int merge(const std::vector<std::string>& args);
+int convert(const std::vector<std::string>& args);
+int info(const std::vector<std::string>& args);
+
+const char* usage_text();
+
+}  // namespace rtimg
