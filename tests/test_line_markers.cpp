@@ -49,7 +49,7 @@ TEST(a_marker_applies_to_every_error_after_it) {
     // End of file, and the missing-viewer error at the end, are named in the marked file.
     CHECK_CONTAINS(scene_error(std::string(kTestViewer) + "#line 20 \"s.rts\"\n1 1 0 0"),
                    "s.rts:20:8: unexpected end of file");
-    CHECK_CONTAINS(scene_error("#line 5 \"s.rts\"\n103 1 1 1\n"), "s.rts:6:1: no viewer");
+    CHECK_CONTAINS(scene_error("#line 5 \"s.rts\"\n103 1 1 1\n"), "s.rts:5:10: no viewer");
 }
 
 TEST(an_error_at_an_object_id_notes_the_object_before_it) {
