@@ -78,6 +78,9 @@ bool parse_line_marker(std::string_view text, int& line, std::string_view& path)
     const std::size_t close = text.find('"', i + 1);
     if (close == std::string_view::npos || close == i + 1) return false;
     path = text.substr(i + 1, close - i - 1);
+    // Messages print the path: a control byte in it would reach the terminal.
+    for (const char c : path)
+        if (is_control(static_cast<unsigned char>(c))) return false;
     i = close + 1;
     skip_blanks();
     if (i != text.size()) return false;

@@ -74,3 +74,12 @@ TEST(an_error_at_an_object_id_notes_the_object_before_it) {
     CHECK_CONTAINS(scene_error(std::string(kTestViewer) + "103 1 1 1\n#line 9 \"b.rts\"\nx\n"),
                    "b.rts:9:1: note: the previous object, ambient light 103 at test.in:2:1");
 }
+
+TEST(a_marker_path_with_a_control_byte_is_only_a_comment) {
+    // Found by fuzzing: the path would be printed in every message after it.
+    CHECK_CONTAINS(scene_error(std::string(kTestViewer) + "#line 20 \"s\x1b[2J\"\n1 1 0 0"),
+                   "test.in:3:8: unexpected end of file");
+    CHECK_CONTAINS(scene_error(std::string(kTestViewer) + "#line 20 \"s" + std::string(1, '\0') +
+                               "x\"\n1 1 0 0"),
+                   "test.in:3:8: unexpected end of file");
+}
