@@ -19,6 +19,18 @@ using namespace rt;
 using namespace rt_test;
 namespace fs = std::filesystem;
 
+// ASan's shadow memory and quarantine make resident memory no measure of what rt allocates.
+#if defined(__SANITIZE_ADDRESS__)
+#define RT_MEASURES_MEMORY 0
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define RT_MEASURES_MEMORY 0
+#endif
+#endif
+#ifndef RT_MEASURES_MEMORY
+#define RT_MEASURES_MEMORY 1
+#endif
+
 namespace {
 
 const std::string kViewer = kTestViewer;
@@ -65,7 +77,7 @@ TEST(sphere_lights_cost_no_memory_per_sample) {
     // few dozen bytes whatever its samples.
     const long grown = read_peak_kib(sphere_lights(40000, 26));
     CHECK(grown >= 0);
-    CHECK(grown < 12 * 1024);
+    if (RT_MEASURES_MEMORY) CHECK(grown < 12 * 1024);
 }
 
 TEST(light_samples_are_capped_while_reading) {
@@ -77,7 +89,8 @@ TEST(light_samples_are_capped_while_reading) {
                          "shadow ray for every point lit)"));
     // The old reproducer: refused at light 257, having cost next to nothing.
     const long grown = read_peak_kib(sphere_lights(40000, 4096));
-    CHECK(grown >= 0 && grown < 4 * 1024);
+    CHECK(grown >= 0);
+    if (RT_MEASURES_MEMORY) CHECK(grown < 4 * 1024);
 }
 
 TEST(a_texture_is_loaded_once_whatever_it_is_called) {
@@ -246,13 +259,7 @@ TEST(read_errors_on_the_scene_are_reported_with_their_reason) {
                                 "descriptor\n"));
 }
 
-#if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define RT_SKIP_ULIMIT_TEST
-#endif
-#endif
-#ifndef RT_SKIP_ULIMIT_TEST
+#if RT_MEASURES_MEMORY  // ASan cannot run under ulimit -v
 TEST(a_thread_that_cannot_start_gives_a_hint) {
     // Too little address space for 1024 thread stacks: rt says what to do about it.
     const fs::path dir = work_dir("hostile_threads");
@@ -265,5 +272,4 @@ TEST(a_thread_that_cannot_start_gives_a_hint) {
     CHECK_CONTAINS(read_file(dir / "rt.err"), "): try a smaller -j");
     CHECK(!fs::exists(dir / "out.ppm"));
 }
-#endif
 #endif

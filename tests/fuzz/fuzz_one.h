@@ -20,7 +20,7 @@ namespace rt_fuzz {
 // non-empty name), line and column whole numbers >= 1.
 inline bool has_place(std::string_view message) {
     const std::string_view line = message.substr(0, message.find('\n'));
-    for (std::size_t colon = line.find(':'); colon != std::string_view::npos && colon > 0;
+    for (std::size_t colon = line.find(':', 1); colon != std::string_view::npos;
          colon = line.find(':', colon + 1)) {
         std::size_t i = colon;
         bool numbers = true;
