@@ -14,9 +14,11 @@
 #include <new>
 #include <optional>
 #include <sstream>
+#include <system_error>
 #include <thread>
 
 #include "rt/cli.h"
+#include "rt/cost.h"
 #include "rt/depfile.h"
 #include "rt/error.h"
 #include "rt/image_io.h"
@@ -112,6 +114,9 @@ int run(const rt::CommandLine& cl, int threads) {
         summary << "\n";
         return print(summary.view());
     }
+    if (!cl.quiet)
+        for (const std::string& warning : rt::cost_warnings(scene, cl.render))
+            std::cerr << "rt: warning: " << warning << "\n";
     // The output files are checked and claimed before rendering, so a bad path fails fast,
     // and are only replaced once complete. The files the render reads are never written over.
     rt::ImageEncoding encoding = cl.image;
@@ -197,6 +202,12 @@ int main(int argc, char** argv) {
         std::cerr << e.what() << "\n";
     } catch (const std::bad_alloc&) {
         std::cerr << "rt: out of memory\n";
+    } catch (const std::system_error& e) {
+        // std::thread's way to say the system would not start another thread.
+        if (e.code() == std::errc::resource_unavailable_try_again)
+            std::cerr << "rt: cannot start another thread (" << e.what() << "): try a smaller -j\n";
+        else
+            std::cerr << "rt: " << e.what() << "\n";
     } catch (const std::exception& e) {
         std::cerr << "rt: " << e.what() << "\n";
     }

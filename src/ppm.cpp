@@ -1,12 +1,17 @@
 #include "rt/ppm.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
-#include <fstream>
-#include <optional>
+#include <istream>
 
 #include "rt/error.h"
+#include "rt/fd_stream.h"
 #include "rt/image_io.h"
 
 namespace rt {
@@ -28,16 +33,17 @@ bool is_ppm_space(int c) {
     return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
 }
 
-// The bytes after the stream's position in a regular file, or nothing when the size is unknown
-// (a pipe, say).
-std::optional<std::size_t> bytes_left(std::istream& in, const std::filesystem::path& path) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
-    const auto size = std::filesystem::file_size(path, ec);
-    const auto position = in.tellg();
-    if (ec || position < 0) return std::nullopt;
-    const auto at = static_cast<std::uintmax_t>(position);
-    return static_cast<std::size_t>(size > at ? size - at : 0);
+// Only a regular file is read: a FIFO or a device could block rt for ever or feed it without
+// end, and its size, which bounds what a header may claim, is unknown.
+void require_regular(const struct stat& st) {
+    if (S_ISDIR(st.st_mode)) throw Error("it is a directory");
+    if (S_ISREG(st.st_mode)) return;
+    const char* kind = S_ISFIFO(st.st_mode)   ? "a FIFO"
+                       : S_ISCHR(st.st_mode)  ? "a character device"
+                       : S_ISBLK(st.st_mode)  ? "a block device"
+                       : S_ISSOCK(st.st_mode) ? "a socket"
+                                              : "not a file";
+    throw Error(std::string("it is not a regular file (") + kind + ")");
 }
 
 class PpmHeader {
@@ -75,11 +81,26 @@ class PpmHeader {
 
 }  // namespace
 
+FileId texture_file(const std::filesystem::path& path) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0)
+        throw Error(std::string("cannot open it: ") + std::strerror(errno));
+    require_regular(st);
+    return {static_cast<std::uint64_t>(st.st_dev), static_cast<std::uint64_t>(st.st_ino)};
+}
+
 Image read_ppm(const std::filesystem::path& path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw Error("it is a directory");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(std::string("cannot open it: ") + std::strerror(errno));
+    texture_file(path);
+    // Checked again on the open file, which may have been replaced since; O_NONBLOCK keeps a
+    // FIFO put there meanwhile from blocking the open.
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+    if (fd < 0) throw Error(std::string("cannot open it: ") + std::strerror(errno));
+    FdBuf buffer(fd, "cannot read it", true);
+    struct stat st {};
+    if (::fstat(fd, &st) != 0) throw Error(std::string("cannot read it: ") + std::strerror(errno));
+    require_regular(st);
+    std::istream in(&buffer);
+    in.exceptions(std::ios::badbit);  // a read error is thrown, not taken for the end
     char magic[2] = {};
     in.read(magic, 2);
     if (!in || magic[0] != 'P' || (magic[1] != '6' && magic[1] != '3'))
@@ -107,9 +128,10 @@ Image read_ppm(const std::filesystem::path& path) {
     // before allocating, so a short file costs nothing. Each binary sample takes one or two
     // bytes; each text sample at least one (digits and separators take more).
     const std::size_t bytes_per_sample = binary && maxval > 255 ? 2 : 1;
-    const auto remaining = bytes_left(in, path);
-    if (remaining && *remaining < count * bytes_per_sample)
-        throw Error("PPM pixel data ends early");
+    const auto size = static_cast<std::int64_t>(st.st_size);
+    const auto remaining =
+        static_cast<std::size_t>(std::max<std::int64_t>(size - buffer.position(), 0));
+    if (remaining < count * bytes_per_sample) throw Error("PPM pixel data ends early");
     image.values.resize(count);
     const double scale = 1.0 / static_cast<double>(maxval);
     for (std::size_t i = 0; i < count; ++i) {

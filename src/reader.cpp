@@ -1,5 +1,9 @@
 #include "rt/reader.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <chrono>
@@ -7,10 +11,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
-#include <iostream>
+#include <istream>
+#include <limits>
 
 #include "rt/error.h"
+#include "rt/fd_stream.h"
 #include "rt/ppm.h"
 #include "rt/statistics.h"
 
@@ -86,6 +91,7 @@ double SceneReader::number(std::string_view what) {
     if (token.at_end()) fail(token.where, "unexpected end of file: expected " + std::string(what));
     ++numbers_read_;
     last_number_ = token.where;
+    last_number_text_ = token.text;
     if (token.quoted)
         fail(token.where, "expected " + std::string(what) + " (a number), got a quoted string");
     // strtod decides what a number is. from_chars reads the plain decimal numbers that scenes
@@ -101,25 +107,25 @@ double SceneReader::number(std::string_view what) {
         value = std::strtod(begin, &strtod_end);
         if (strtod_end == begin || *strtod_end != '\0')
             fail(token.where,
-                 "expected " + std::string(what) + " (a number), got '" + token.text + "'");
+                 "expected " + std::string(what) + " (a number), got " + quote_token(token.text));
     }
     if (!std::isfinite(value))
-        fail(token.where, std::string(what) + " must be a finite number, got '" + token.text + "'");
+        fail(token.where,
+             std::string(what) + " must be a finite number, got " + quote_token(token.text));
     return value;
 }
 
 double SceneReader::positive(std::string_view what) {
     const Location where = next_location();
     const double value = number(what);
-    if (!(value > 0)) fail(where, std::string(what) + " must be > 0, got " + format_number(value));
+    if (!(value > 0)) fail(where, std::string(what) + " must be > 0, got " + last_number_text());
     return value;
 }
 
 double SceneReader::non_negative(std::string_view what) {
     const Location where = next_location();
     const double value = number(what);
-    if (!(value >= 0))
-        fail(where, std::string(what) + " must be >= 0, got " + format_number(value));
+    if (!(value >= 0)) fail(where, std::string(what) + " must be >= 0, got " + last_number_text());
     return value;
 }
 
@@ -130,32 +136,66 @@ Vec3 SceneReader::vec3(std::string_view what) {
     return {x, y, z};
 }
 
+std::string SceneReader::last_number_text() const { return show_token(last_number_text_); }
+
+namespace {
+// The largest absolute component: dividing by it before squaring keeps a squared length
+// from underflowing (or overflowing) for any finite, non-zero vector.
+double largest_component(const Vec3& v) {
+    return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+}
+}  // namespace
+
 Vec3 SceneReader::nonzero_vec3(std::string_view what) {
     const Location where = next_location();
     const Vec3 v = vec3(what);
-    // Each component is finite, but the squared length can still overflow or underflow.
-    const double len = length(v);
-    if (!(len > 0) || !std::isfinite(len))
+    if (!(largest_component(v) > 0))
         fail(where, std::string(what) + " must have a non-zero, finite length");
+    // Its length is used as it is, squared, so the square must be a normal number.
+    const double squared = length_squared(v);
+    if (!(squared >= std::numeric_limits<double>::min()) || !std::isfinite(squared))
+        fail(where, std::string(what) +
+                        " is too short or too long: its squared length must be between about "
+                        "1e-307 and 1e308");
     return v;
+}
+
+Vec3 SceneReader::direction(std::string_view what, double* length_out) {
+    const Location where = next_location();
+    const Vec3 v = vec3(what);
+    const double largest = largest_component(v);
+    if (!(largest > 0)) fail(where, std::string(what) + " must have a non-zero length");
+    // Scaled only when the squared length leaves the normal doubles, so that every other
+    // direction comes out exactly as v / |v| always did.
+    const double squared = length_squared(v);
+    const bool normal = squared >= std::numeric_limits<double>::min() && std::isfinite(squared);
+    const double scale = normal ? 1 : largest;
+    const Vec3 scaled = v / scale;
+    const double scaled_length = length(scaled);
+    if (length_out != nullptr) *length_out = scale * scaled_length;
+    return scaled / scaled_length;
 }
 
 long SceneReader::whole(std::string_view what, long min, long max) {
     const Location where = next_location();
     const double value = number(what);
     if (value != std::floor(value))
-        fail(where, std::string(what) + " must be a whole number, got " + format_number(value));
+        fail(where, std::string(what) + " must be a whole number, got " + last_number_text());
     if (value < static_cast<double>(min) || value > static_cast<double>(max))
         fail(where, std::string(what) + " must be between " + std::to_string(min) + " and " +
-                        std::to_string(max) + ", got " + format_number(value));
+                        std::to_string(max) + ", got " + last_number_text());
     return static_cast<long>(value);
 }
 
 long SceneReader::id(std::string_view what) {
     const Location where = next_location();
     const double value = number(what);
-    if (value != std::floor(value) || std::fabs(value) > 1e9)
-        fail(where, std::string(what) + " must be a whole number, got " + format_number(value));
+    if (value != std::floor(value))
+        fail(where, std::string(what) + " must be a whole number, got " + last_number_text());
+    // No ID is near this; the bound only keeps the conversion to long defined.
+    if (std::fabs(value) > 1e9)
+        fail(where, std::string(what) + " is out of range (no ID is beyond 1e9), got " +
+                        last_number_text());
     return static_cast<long>(value);
 }
 
@@ -170,15 +210,21 @@ std::shared_ptr<const Image> SceneReader::texture(std::string_view what) {
     const Location where = next_location();
     const std::string written = path(what);
     const std::filesystem::path resolved = resolve(written);
-    if (const auto known = textures_.find(resolved); known != textures_.end()) return known->second;
     try {
+        const FileId file = texture_file(resolved);
+        if (const auto known = textures_.find(file); known != textures_.end()) return known->second;
         auto image = std::make_shared<const Image>(read_ppm(resolved));
-        textures_.emplace(resolved, image);
+        textures_.emplace(file, image);
         texture_paths_.push_back(resolved);
         return image;
     } catch (const Error& e) {
-        std::string message = "cannot read texture '" + written + "': " + e.what();
-        if (resolved.string() != written) message += " (looked for '" + resolved.string() + "')";
+        // Paths are shown whole (escaped): a user needs all of one to find the file.
+        std::string message =
+            "cannot read texture " + quote_token(written, kMaxTokenLength) + ": " + e.what();
+        if (resolved.string() != written)
+            message += " (looked for " +
+                       quote_token(resolved.string(), std::numeric_limits<std::size_t>::max()) +
+                       ")";
         fail(where, message);
     }
 }
@@ -310,7 +356,7 @@ void SceneReader::read_top_level_object(Scene& scene, bool& have_viewer) {
                                   " found where an object is expected; a surface must follow a "
                                   "primitive",
                               numbers_before, last_number_before);
-        fail_at_object_id(where, "unknown object ID " + std::to_string(type_id), numbers_before,
+        fail_at_object_id(where, "unknown object ID " + last_number_text(), numbers_before,
                           last_number_before);
     }
     begin_object(type_id, where, true);
@@ -322,6 +368,12 @@ void SceneReader::read_top_level_object(Scene& scene, bool& have_viewer) {
         scene.objects.push_back(std::move(object));
     } else if (const LightType* light_type = find_light_type(small)) {
         scene.lights.push_back({light_type, light_type->read(*this)});
+        light_samples_ += scene.lights.back().sample_count();
+        if (light_samples_ > kMaxLightSamples)
+            fail(where, "too many light samples: with this light the scene's lights take " +
+                            std::to_string(light_samples_) + " samples, more than the limit of " +
+                            std::to_string(kMaxLightSamples) +
+                            " (each is a shadow ray for every point lit)");
     } else if (type_id == kViewerId) {
         if (have_viewer) fail(where, "a second viewer (102); a scene has exactly one");
         scene.viewer = read_viewer();
@@ -344,8 +396,7 @@ Scene SceneReader::read_scene() {
 }
 
 Scene read_scene(std::istream& in, const std::string& name, const std::filesystem::path& base_dir,
-                 int threads, StageTimes* times,
-                 std::vector<std::filesystem::path>* textures) {
+                 int threads, StageTimes* times, std::vector<std::filesystem::path>* textures) {
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
     SceneReader reader(in, name, base_dir, threads);
@@ -362,15 +413,25 @@ Scene read_scene(std::istream& in, const std::string& name, const std::filesyste
 
 Scene read_scene_file(const std::string& path, int threads, StageTimes* times,
                       std::vector<std::filesystem::path>* textures) {
-    if (path == "-")
-        return read_scene(std::cin, "<stdin>", std::filesystem::current_path(), threads, times,
-                          textures);
+    // Read through a descriptor, so that a read error is reported as one, with its reason,
+    // rather than taken for the end of the scene.
+    if (path == "-") {
+        struct stat st {};
+        if (::fstat(0, &st) != 0)
+            throw Error(std::string("<stdin>: cannot read the scene from standard input: ") +
+                        std::strerror(errno));
+        FdBuf buffer(0, "<stdin>: cannot read the scene", false);
+        std::istream in(&buffer);
+        return read_scene(in, "<stdin>", std::filesystem::current_path(), threads, times, textures);
+    }
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
         throw Error(path + ": is a directory, not a scene file");
-    std::ifstream file(path, std::ios::binary);
-    if (!file) throw Error(path + ": cannot open scene file: " + std::strerror(errno));
-    return read_scene(file, path, std::filesystem::path(path).parent_path(), threads, times,
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) throw Error(path + ": cannot open scene file: " + std::strerror(errno));
+    FdBuf buffer(fd, path + ": cannot read the scene", true);
+    std::istream in(&buffer);
+    return read_scene(in, path, std::filesystem::path(path).parent_path(), threads, times,
                       textures);
 }
 

@@ -52,7 +52,7 @@ inline std::vector<ErrorCase> scene_error_cases() {
         {"102 0 0 5 0 0 0 0 0 0 0 1 0 4 4",
          "test.in:1:17: viewer x vector must have a non-zero, finite length"},
         {kViewer + "2 0 0 0 0" + kSurface,
-         "test.in:2:5: plane normal must have a non-zero, finite length"},
+         "test.in:2:5: plane normal must have a non-zero length"},
         {kViewer + "1 1 0 0 0 106",
          "test.in:2:11: 106 (use default surface) but no default surface has been set with 105"},
         {kViewer + "1 1 0 0 0 101 1 1 1 1 1 1",

@@ -67,8 +67,8 @@ TEST(scene_errors_exit_1_and_keep_the_old_image) {
     };
     const std::string where[] = {"bad.in:2:3: sphere radius must be > 0, got -1",
                                  "bad.in:2:1: unknown object ID 77",
-                                 "bad.in:3:1: unexpected end of file: expected sphere centre",
-                                 "bad.in:2:1: no viewer (102) in the scene",
+                                 "bad.in:2:8: unexpected end of file: expected sphere centre",
+                                 "bad.in:1:30: no viewer (102) in the scene",
                                  "bad.in:1:29: viewer x resolution must be between 1 and 16384"};
     for (std::size_t i = 0; i < std::size(bad); ++i) {
         write_file(dir / "bad.in", bad[i]);
@@ -228,12 +228,17 @@ TEST(conventions) {
     CHECK_EQ(cl.render.min_weight, 0.5);
     CHECK(cl.render.adaptive_threshold == 0.1);
     // Range errors say so, whatever the size of the number.
-    for (const char* args : {"-d 1001", "-d -1", "-j 99999999999999999999", "-s 65", "-s 0"}) {
+    for (const char* args : {"-d 65", "-d -1", "-j 99999999999999999999", "-s 65", "-s 0"}) {
         r = run_rt(dir, std::string(args) + " -r -- -x.in");
         CHECK_EQ(r.status, 2);
         CHECK_CONTAINS(r.err, "is out of range");
     }
-    CHECK_CONTAINS(run_rt(dir, "-d 1001").err, "rt: -d 1001 is out of range (0 to 1000)");
+    CHECK_CONTAINS(run_rt(dir, "-d 65").err, "rt: -d 65 is out of range (0 to 64)");
+    CHECK_CONTAINS(run_rt(dir, "-d 99999999999999999999").err,
+                   "rt: -d 99999999999999999999 is out of range (0 to 64)");
+    CHECK_CONTAINS(run_rt(dir, "-w 1e-400").err,
+                   "rt: -w 1e-400 is too small to tell from 0 (below about 4.9e-324); write 0");
+    CHECK_CONTAINS(run_rt(dir, "-w 1e400").err, "rt: -w 1e400 is out of range (above about 1.8e308)");
     CHECK_CONTAINS(run_rt(dir, "-d +x").err, "-d expects a whole number, got '+x'");
     CHECK_CONTAINS(run_rt(dir, "-d ++5").err, "-d expects a whole number, got '++5'");
 }

@@ -261,7 +261,7 @@ TEST(read_errors_name_the_field) {
     CHECK_CONTAINS(scene_error(cone_scene("0.9 1 1 0 2 0 0 -5 0")),
                    "test.in:2:9: cone finish must be greater than start 1, got 1");
     CHECK_CONTAINS(scene_error(cone_scene("0.9 0 2 0 2 0 0 0 0")),
-                   "test.in:2:17: cone axis must have a non-zero, finite length");
+                   "test.in:2:17: cone axis must have a non-zero length");
     CHECK_CONTAINS(scene_error(cone_scene("0.9 0 1e300 0 2 0 1e10 0 0")),
                    "test.in:2:21: cone start and finish times the axis length (1e+10) must be "
                    "finite and distinct");

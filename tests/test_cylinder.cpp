@@ -209,7 +209,7 @@ TEST(read_errors_name_the_field) {
     CHECK_CONTAINS(scene_error(cylinder_scene("0.5 3 3 0 2 0 0 -1 0")),
                    "test.in:2:9: cylinder finish must be greater than start 3, got 3");
     CHECK_CONTAINS(scene_error(cylinder_scene("0.5 0 10 0 2 0 0 0 0")),
-                   "test.in:2:18: cylinder axis must have a non-zero, finite length");
+                   "test.in:2:18: cylinder axis must have a non-zero length");
     CHECK_CONTAINS(scene_error(cylinder_scene("0.5 -1e300 10 0 2 0 1e10 0 0")),
                    "test.in:2:23: cylinder start and finish times the axis length (1e+10) must "
                    "be finite and distinct");

@@ -607,13 +607,13 @@ TEST(flat_primitive_read_errors) {
     // Each line below is line 2 of the scene (the test viewer is line 1).
     // Plane: zero normal.
     CHECK_CONTAINS(primitive_error(join("2 1  0 0 0", kSurface)),
-                   "test.in:2:6: plane normal must have a non-zero, finite length");
-    // A normal whose squared length overflows is as bad.
-    CHECK_CONTAINS(primitive_error(join("2 1  1e300 0 0", kSurface)),
-                   "test.in:2:6: plane normal must have a non-zero, finite length");
+                   "test.in:2:6: plane normal must have a non-zero length");
+    // A normal whose squared length overflows, or underflows, is still a direction.
+    CHECK_EQ(primitive_error(join("2 1  1e300 0 0", kSurface)), std::string());
+    CHECK_EQ(primitive_error(join("2 1  0 1e-170 0", kSurface)), std::string());
     // Disk: zero normal, zero and negative radius.
     CHECK_CONTAINS(primitive_error(join("3 0 0 0  0 0 0  1", kSurface)),
-                   "test.in:2:10: disk normal must have a non-zero, finite length");
+                   "test.in:2:10: disk normal must have a non-zero length");
     CHECK_CONTAINS(primitive_error(join("3 0 0 0  0 0 1  0", kSurface)),
                    "test.in:2:17: disk radius must be > 0, got 0");
     CHECK_CONTAINS(primitive_error(join("3 0 0 0  0 0 1  -1", kSurface)),
@@ -621,7 +621,7 @@ TEST(flat_primitive_read_errors) {
     // Annulus: zero normal, bad outer radius, inner radius negative, equal to or beyond the
     // outer.
     CHECK_CONTAINS(primitive_error(join("4 0 0 0  0 0 0  2 1", kSurface)),
-                   "test.in:2:10: annulus normal must have a non-zero, finite length");
+                   "test.in:2:10: annulus normal must have a non-zero length");
     CHECK_CONTAINS(primitive_error(join("4 0 0 0  0 1 0  -2 1", kSurface)),
                    "test.in:2:17: annulus outer radius must be > 0, got -2");
     CHECK_CONTAINS(primitive_error(join("4 0 0 0  0 1 0  2 -1", kSurface)),

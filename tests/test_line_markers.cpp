@@ -49,7 +49,7 @@ TEST(a_marker_applies_to_every_error_after_it) {
     // End of file, and the missing-viewer error at the end, are named in the marked file.
     CHECK_CONTAINS(scene_error(std::string(kTestViewer) + "#line 20 \"s.rts\"\n1 1 0 0"),
                    "s.rts:20:8: unexpected end of file");
-    CHECK_CONTAINS(scene_error("#line 5 \"s.rts\"\n103 1 1 1\n"), "s.rts:6:1: no viewer");
+    CHECK_CONTAINS(scene_error("#line 5 \"s.rts\"\n103 1 1 1\n"), "s.rts:5:10: no viewer");
 }
 
 TEST(an_error_at_an_object_id_notes_the_object_before_it) {
@@ -73,4 +73,13 @@ TEST(an_error_at_an_object_id_notes_the_object_before_it) {
     // The note names the previous object's file when a marker moved the error to another.
     CHECK_CONTAINS(scene_error(std::string(kTestViewer) + "103 1 1 1\n#line 9 \"b.rts\"\nx\n"),
                    "b.rts:9:1: note: the previous object, ambient light 103 at test.in:2:1");
+}
+
+TEST(a_marker_path_with_a_control_byte_is_only_a_comment) {
+    // Found by fuzzing: the path would be printed in every message after it.
+    CHECK_CONTAINS(scene_error(std::string(kTestViewer) + "#line 20 \"s\x1b[2J\"\n1 1 0 0"),
+                   "test.in:3:8: unexpected end of file");
+    CHECK_CONTAINS(scene_error(std::string(kTestViewer) + "#line 20 \"s" + std::string(1, '\0') +
+                               "x\"\n1 1 0 0"),
+                   "test.in:3:8: unexpected end of file");
 }

@@ -233,7 +233,7 @@ TEST(read_errors_name_the_place) {
     CHECK_CONTAINS(scene_error(polygon_scene("3.5  0 0 0  1 0 0  0 1 0")),
                    "test.in:2:4: polygon vertex count must be a whole number, got 3.5");
     CHECK_CONTAINS(scene_error(polygon_scene("2000000  0 0 0")),
-                   "test.in:2:4: polygon vertex count must be between 3 and 1000000, got 2e+06");
+                   "test.in:2:4: polygon vertex count must be between 3 and 1000000, got 2000000");
     CHECK_CONTAINS(scene_error(polygon_scene("3  0 0 0  1 1 1  2 2 2")),
                    "test.in:2:7: polygon vertices all lie on one line, so they span no plane");
     CHECK_CONTAINS(scene_error(polygon_scene("4  1 1 1  1 1 1  1 1 1  1 1 1")),

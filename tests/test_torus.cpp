@@ -412,7 +412,7 @@ TEST(read_errors) {
     };
     CHECK_EQ(scene("10  0 0 0  0 1 0  1 0.5"), "");
     CHECK_CONTAINS(scene("10  0 0 0  0 0 0  1 0.5"),
-                   "test.in:2:12: torus axis must have a non-zero, finite length");
+                   "test.in:2:12: torus axis must have a non-zero length");
     CHECK_CONTAINS(scene("10  0 0 0  0 1 0  0 0.5"),
                    "test.in:2:19: torus major radius must be > 0, got 0");
     CHECK_CONTAINS(scene("10  0 0 0  0 1 0  -2 0.5"),

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <istream>
 #include <memory>
 #include <string>
@@ -11,9 +12,10 @@
 
 namespace rt {
 
+// 64-bit counters: a line of more than 2^31 bytes must not wrap into negative columns.
 struct Location {
-    int line = 1;
-    int column = 1;
+    std::int64_t line = 1;
+    std::int64_t column = 1;
     int file = 0;  // which of the lexer's file names: 0 is the input's own, others come from
                    // `#line N "path"` markers
 };
@@ -22,7 +24,8 @@ struct Token {
     std::string text;
     Location where;
     bool quoted = false;  // a "double-quoted" path, which may be empty
-    bool end = false;     // no more tokens: `where` is the end of the input
+    bool end = false;     // no more tokens: `where` is just after the last token, where the
+                          // reader stopped (as compilers report it), or 1:1 for no tokens
 
     bool at_end() const { return end; }
 };
@@ -30,6 +33,14 @@ struct Token {
 // The longest token rt accepts; a longer one is an error, so no input makes the lexer
 // allocate without bound.
 inline constexpr std::size_t kMaxTokenLength = 4096;
+
+// A token as messages show it, in single quotes: bytes that could drive a terminal (control
+// characters, invalid UTF-8) written as \xNN, and a long token cut to its first characters.
+// The default limit is enough to recognise a token and too little to copy much of a file that
+// is not a scene onto the terminal; paths are shown whole.
+std::string quote_token(std::string_view text, std::size_t limit = 40);
+// The same without the quotes, for numbers shown as written.
+std::string show_token(std::string_view text, std::size_t limit = 40);
 
 class Lexer {
   public:
@@ -58,6 +69,7 @@ class Lexer {
     void scan_plain();
     void end_line();
     void note_line_marker();
+    void check_bytes(const char* start, std::size_t length, Location at) const;
 
     std::istream& in_;
     std::vector<std::string> names_;  // the input's name, then each name a marker gave
@@ -67,6 +79,7 @@ class Lexer {
     Token token_;
     bool peeked_ = false;          // token_ holds the next token, not yet consumed
     Location here_;                // where chunk_[pos_] is in the input
+    Location after_last_;          // just after the last token's last byte
     bool line_is_blank_ = true;    // nothing but blanks so far on this line: a marker may start
     std::string comment_;          // a comment that may be a line marker, as read so far
     bool marker_pending_ = false;  // the comment just read was a marker: the next line is ...

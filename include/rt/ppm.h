@@ -34,7 +34,18 @@ struct Image {
 // The largest texture rt reads, in pixels.
 inline constexpr long kMaxImagePixels = 64L * 1024 * 1024;
 
-// Reads a P6 or P3 file; throws rt::Error("<reason>") without a location, which the caller
+// A file's identity: the same file under any name (links, ./, ..) has the same one.
+struct FileId {
+    std::uint64_t device = 0;
+    std::uint64_t inode = 0;
+    auto operator<=>(const FileId&) const = default;
+};
+
+// The identity of a texture file, which must be a regular file; throws rt::Error("<reason>")
+// otherwise (a FIFO or a device is refused without being opened, so it cannot block).
+FileId texture_file(const std::filesystem::path& path);
+
+// Reads a P6 or P3 regular file; throws rt::Error("<reason>") without a location, which the caller
 // adds.
 Image read_ppm(const std::filesystem::path& path);
 

@@ -12,6 +12,7 @@
 
 #include "rt/lexer.h"
 #include "rt/light.h"
+#include "rt/ppm.h"
 #include "rt/primitive.h"
 #include "rt/scene.h"
 #include "rt/surface.h"
@@ -28,6 +29,10 @@ inline constexpr int kMaxNesting = 32;
 // more is an error before anything is allocated.
 inline constexpr long kMaxResolution = 16384;
 inline constexpr long kMaxPixels = 64L * 1024 * 1024;
+
+// The most light samples a scene may take in all (a point light takes one, a sphere light n):
+// each is a shadow ray for every point lit, so this bounds the cost of lighting one point.
+inline constexpr long kMaxLightSamples = 1L << 20;
 
 // Reads one scene. The read functions of the object tables call back into it for their
 // numbers, so every error they report carries a place in the file.
@@ -47,14 +52,23 @@ class SceneReader {
     double positive(std::string_view what);      // > 0
     double non_negative(std::string_view what);  // >= 0
     Vec3 vec3(std::string_view what);
-    Vec3 nonzero_vec3(std::string_view what);  // a direction: zero length is an error
+    // A vector whose length matters (a viewer's x vector): zero, or too short or too long for
+    // its squared length to be a normal double, is an error.
+    Vec3 nonzero_vec3(std::string_view what);
+    // A direction, returned as a unit vector: any non-zero vector, however short. With
+    // `length`, the vector's length as written is stored there.
+    Vec3 direction(std::string_view what, double* length = nullptr);
+    // The number last read as it was written, for messages (cut and escaped).
+    std::string last_number_text() const;
     long whole(std::string_view what, long min, long max);
     std::string path(std::string_view what);
     // Reads a texture path and loads the PPM it names (relative to the scene's directory).
-    // Each file is loaded once per scene however many surfaces name it.
+    // Each file (by device and inode) is loaded once per scene however many surfaces name it,
+    // by whatever path.
     std::shared_ptr<const Image> texture(std::string_view what);
-    // The texture files loaded so far, each once, in the order first named (as resolved
-    // against the scene's directory): what an image made from the scene depends on.
+    // The texture files loaded so far, each once, in the order first named (by the first
+    // name used, resolved against the scene's directory): what an image made from the scene depends
+    // on.
     const std::vector<std::filesystem::path>& texture_paths() const { return texture_paths_; }
 
     // Nested objects: an inner primitive (ID and numbers, no surface), a surface (ID and
@@ -108,18 +122,20 @@ class SceneReader {
     std::string name_;
     std::filesystem::path base_dir_;
     SurfacePtr default_surface_;
-    std::map<std::filesystem::path, std::shared_ptr<const Image>> textures_;
+    std::map<FileId, std::shared_ptr<const Image>> textures_;  // by file, not by name
     std::vector<std::filesystem::path> texture_paths_;
     int depth_ = 0;
     long numbers_read_ = 0;         // every number token so far, IDs included
     Location last_number_;          // where the last of them began
+    std::string last_number_text_;  // and how it was written
+    long light_samples_ = 0;        // taken by the lights so far
     ObjectStart last_object_;       // the object (at any depth) whose ID was read last
     ObjectStart top_level_object_;  // the top-level object that holds it
     std::size_t skipped_triangles_ = 0;
     int threads_ = 1;
 };
 
-// A number as messages show it (%g).
+// A number rt computed as messages show it (%g); numbers read are shown as written.
 std::string format_number(double value);
 
 struct StageTimes;

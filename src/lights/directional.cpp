@@ -15,10 +15,10 @@ struct DirectionalLight {
 }  // namespace
 
 LightData read(SceneReader& reader) {
-    const Vec3 direction = reader.nonzero_vec3("directional light direction");
+    const Vec3 direction = reader.direction("directional light direction");
     const Vec3 i = reader.vec3("directional light intensity");
     return std::make_shared<const DirectionalLight>(
-        DirectionalLight{-normalized(direction), {i.x, i.y, i.z}});
+        DirectionalLight{-direction, {i.x, i.y, i.z}});
 }
 
 int sample_count(const void*) { return 1; }

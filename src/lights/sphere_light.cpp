@@ -2,7 +2,8 @@
 // points spread evenly over its sphere, each carrying intensity / n with inverse-square
 // falloff, so that objects cast soft shadows.
 //
-// The n points are a spherical Fibonacci lattice, computed once when the light is read. Each
+// The n points are a spherical Fibonacci lattice, each computed when it is sampled: storing
+// them would cost 24n bytes per light, and a small scene could then ask for gigabytes. Each
 // lit point sees the lattice turned by a rotation chosen by a hash of that point's
 // coordinates: neighbouring points then see different sample positions, which turns the
 // bands a fixed lattice leaves in a penumbra into fine noise (and noise, unlike bands,
@@ -13,7 +14,6 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
-#include <vector>
 
 #include "lights/lights.h"
 #include "rt/ray.h"
@@ -27,27 +27,22 @@ struct SphereLight {
     Vec3 centre;
     double radius;
     Spectrum sample_intensity;  // intensity / n: what each sample carries before falloff
-    std::vector<Vec3> lattice;  // n unit vectors, evenly spread over the sphere
+    int n;                      // the number of samples
 };
 
-// The n points of a spherical Fibonacci lattice: heights evenly spaced (so each point
+// Point i of the n of a spherical Fibonacci lattice: heights evenly spaced (so each point
 // stands for an equal area, by Archimedes' hat-box theorem) and longitudes stepped by the
 // golden angle, which keeps neighbouring heights far apart in longitude.
-std::vector<Vec3> fibonacci_lattice(int n) {
+Vec3 fibonacci_point(int i, int n) {
     // The golden ratio's fractional part: turning by this fraction of a full circle each step
     // is turning by the golden angle.
     const double golden_fraction = std::numbers::phi - 1;
-    std::vector<Vec3> points;
-    points.reserve(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i) {
-        const double z = 1 - (2.0 * i + 1) / n;
-        const double r = std::sqrt(1 - z * z);
-        // Taking the fractional part first keeps the angle accurate for large i.
-        const double turns = i * golden_fraction - std::floor(i * golden_fraction);
-        const double longitude = 2 * std::numbers::pi * turns;
-        points.push_back({r * std::cos(longitude), r * std::sin(longitude), z});
-    }
-    return points;
+    const double z = 1 - (2.0 * i + 1) / n;
+    const double r = std::sqrt(1 - z * z);
+    // Taking the fractional part first keeps the angle accurate for large i.
+    const double turns = i * golden_fraction - std::floor(i * golden_fraction);
+    const double longitude = 2 * std::numbers::pi * turns;
+    return {r * std::cos(longitude), r * std::sin(longitude), z};
 }
 
 // The splitmix64 finaliser: a cheap bijective mix in which every input bit affects every
@@ -96,19 +91,16 @@ LightData read(SceneReader& reader) {
     const double radius = reader.positive("sphere light radius");
     const Vec3 i = reader.vec3("sphere light intensity");
     const Spectrum sample_intensity = Spectrum(i.x, i.y, i.z) * (1.0 / n);
-    return std::make_shared<const SphereLight>(
-        SphereLight{centre, radius, sample_intensity, fibonacci_lattice(n)});
+    return std::make_shared<const SphereLight>(SphereLight{centre, radius, sample_intensity, n});
 }
 
-int sample_count(const void* light) {
-    return static_cast<int>(static_cast<const SphereLight*>(light)->lattice.size());
-}
+int sample_count(const void* light) { return static_cast<const SphereLight*>(light)->n; }
 
 LightSample sample(const void* light, const Vec3& point, int index) {
     const auto& l = *static_cast<const SphereLight*>(light);
     assert(index >= 0 && index < sample_count(light));
     const Vec3 on_light =
-        l.centre + l.radius * rotation_for(point).apply(l.lattice[static_cast<std::size_t>(index)]);
+        l.centre + l.radius * rotation_for(point).apply(fibonacci_point(index, l.n));
     const Vec3 to_light = on_light - point;
     const double distance = length(to_light);
     // A point sitting exactly on a sample receives nothing from it rather than a division by

@@ -22,7 +22,7 @@ struct SpotLight {
 
 LightData read(SceneReader& reader) {
     const Vec3 position = reader.vec3("spot light position");
-    const Vec3 axis = normalized(reader.nonzero_vec3("spot light direction"));
+    const Vec3 axis = reader.direction("spot light direction");
     const Location cutoff_at = reader.next_location();
     const double cos_cutoff = reader.number("spot light cos of cut-off angle");
     if (!(cos_cutoff >= -1 && cos_cutoff <= 1))

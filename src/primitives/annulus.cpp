@@ -8,7 +8,7 @@ namespace rt::annulus {
 
 ShapeData read(SceneReader& reader) {
     const Vec3 centre = reader.vec3("annulus centre");
-    const Vec3 n = normalized(reader.nonzero_vec3("annulus normal"));
+    const Vec3 n = reader.direction("annulus normal");
     const double outer = reader.positive("annulus outer radius");
     const Location inner_at = reader.next_location();
     const double inner = reader.non_negative("annulus inner radius");

@@ -50,9 +50,9 @@ inline AxialExtent read_axial_extent(SceneReader& reader, const std::string& nam
                                    ", got " + format_number(finish));
     const Vec3 origin = reader.vec3(name + " " + point_name);
     const Location axis_at = reader.next_location();
-    const Vec3 a = reader.nonzero_vec3(name + " axis");
-    const double len = length(a);
-    const AxialExtent extent{origin, a / len, start * len, finish * len};
+    double len = 0;
+    const Vec3 a = reader.direction(name + " axis", &len);
+    const AxialExtent extent{origin, a, start * len, finish * len};
     // The extent in distances must stay finite and non-empty after scaling by |a|.
     if (!std::isfinite(extent.near) || !std::isfinite(extent.far) || !(extent.near < extent.far))
         reader.fail(axis_at, name + " start and finish times the axis length (" +

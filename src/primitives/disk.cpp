@@ -8,7 +8,7 @@ namespace rt::disk {
 
 ShapeData read(SceneReader& reader) {
     const Vec3 centre = reader.vec3("disk centre");
-    const Vec3 n = normalized(reader.nonzero_vec3("disk normal"));
+    const Vec3 n = reader.direction("disk normal");
     const double radius = reader.positive("disk radius");
     return std::make_shared<const Ring>(Ring::make(centre, n, radius, 0));
 }

@@ -79,21 +79,15 @@ class Label {
     std::size_t size_ = 0;
 };
 
-// A whole number as a message shows it: every digit while a double holds them exactly.
-std::string format_whole(double value) {
-    if (std::fabs(value) < 1e15) return std::to_string(static_cast<long long>(value));
-    return format_number(value);
-}
-
 std::uint32_t read_index(SceneReader& reader, long triangle, long vertex_count) {
     const Location at = reader.next_location();
     const Label what("mesh triangle ", triangle, " vertex index");
     const double value = reader.number(what);
     if (value != std::floor(value))
-        reader.fail(at, what.str() + " must be a whole number, got " + format_number(value));
+        reader.fail(at, what.str() + " must be a whole number, got " + reader.last_number_text());
     if (value < 0 || value >= static_cast<double>(vertex_count))
         reader.fail(at, what.str() + " must be in [0, " + std::to_string(vertex_count) + "), got " +
-                            format_whole(value));
+                            reader.last_number_text());
     return static_cast<std::uint32_t>(value);
 }
 

@@ -1,5 +1,7 @@
 // Plane (ID 2): D; normal n. The points with n.x = D (section 2.3 of the original). Its inside,
 // for CSG, is the half-space n.x < D.
+#include <cmath>
+
 #include "primitives/planar.h"
 #include "primitives/primitives.h"
 #include "rt/reader.h"
@@ -8,10 +10,14 @@ namespace rt::plane {
 
 ShapeData read(SceneReader& reader) {
     const double d = reader.number("plane D");
-    const Vec3 n = reader.nonzero_vec3("plane normal");
+    const Location normal_at = reader.next_location();
+    double len = 0;
+    const Vec3 n = reader.direction("plane normal", &len);
     // Scaling n and D together leaves the plane unchanged; store it with a unit normal.
-    const double len = length(n);
-    return std::make_shared<const Plane>(Plane{n / len, d / len});
+    const double distance = d / len;
+    if (!std::isfinite(distance))
+        reader.fail(normal_at, "plane D divided by the normal's length must be finite");
+    return std::make_shared<const Plane>(Plane{n, distance});
 }
 
 bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {

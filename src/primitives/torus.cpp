@@ -91,7 +91,7 @@ double polish(const Torus& t, const Vec3& o, const Vec3& d, double s) {
 
 ShapeData read(SceneReader& reader) {
     const Vec3 centre = reader.vec3("torus centre");
-    const Vec3 axis = normalized(reader.nonzero_vec3("torus axis"));
+    const Vec3 axis = reader.direction("torus axis");
     const double major = reader.positive("torus major radius");
     const double minor = reader.positive("torus minor radius");
     return std::make_shared<const Torus>(Torus{centre, axis, major, minor, major + minor});

@@ -31,7 +31,7 @@ Material read_material(SceneReader& reader) {
     const Location ior_at = reader.next_location();
     m.ior = reader.number("surface ior (refractive index)");
     if (m.kt > 0 && !(m.ior > 0))
-        reader.fail(ior_at, "surface ior must be > 0 when kt > 0, got " + format_number(m.ior));
+        reader.fail(ior_at, "surface ior must be > 0 when kt > 0, got " + reader.last_number_text());
     return m;
 }
 
