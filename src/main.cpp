@@ -160,7 +160,7 @@ int run(const rt::CommandLine& cl, int threads) {
     // Written only once the image is: a rule for an image that failed would be a lie.
     if (depfile) depfile->write_bytes(rule);
     if (cl.stats) {
-        statistics.threads = std::clamp(threads, 1, region.height());
+        statistics.threads = rt::render_threads(options, region);
         statistics.objects = scene.objects.size();
         statistics.lights = scene.lights.size();
         statistics.peak_memory_bytes = rt::peak_memory_bytes();

@@ -349,12 +349,16 @@ Raster render(const Scene& scene, const RenderOptions& options, RenderStats* sta
     return render_region(scene, options, image_rect(scene.viewer), stats, progress);
 }
 
+int render_threads(const RenderOptions& options, const PixelRect& region) {
+    return std::clamp(worker_threads(options.threads), 1, region.height());
+}
+
 Raster render_region(const Scene& scene, const RenderOptions& options, const PixelRect& region,
                      RenderStats* stats, RenderProgress* progress) {
     const PixelRect image = image_rect(scene.viewer);
     if (region.empty() || !image.contains(region))
         throw std::invalid_argument("render_region: the region is empty or outside the image");
-    const int threads = std::clamp(worker_threads(options.threads), 1, region.height());
+    const int threads = render_threads(options, region);
     // One tracer per thread, each counting its own rays; merged once all have joined.
     const std::vector<Tracer> tracers(static_cast<std::size_t>(threads), Tracer(scene, options));
     // Adaptive decisions need the one-ray values of a margin around the region.

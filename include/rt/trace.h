@@ -132,4 +132,8 @@ inline PixelRect image_rect(const Viewer& v) { return {0, 0, v.xres, v.yres}; }
 Raster render_region(const Scene& scene, const RenderOptions& options, const PixelRect& region,
                      RenderStats* stats = nullptr, RenderProgress* progress = nullptr);
 
+// The threads render_region uses: options.threads (or one per hardware thread), but never
+// more than the region has rows, since rows are what they share.
+int render_threads(const RenderOptions& options, const PixelRect& region);
+
 }  // namespace rt
