@@ -6,7 +6,8 @@
 #include <optional>
 #include <string_view>
 
-#include "rt/reader.h"  // the resolution limits
+#include "rt/message_text.h"  // values echoed in messages are escaped as tokens are
+#include "rt/reader.h"        // the resolution limits
 
 namespace rt {
 
@@ -33,11 +34,11 @@ int parse_int(const std::string& option, const std::string& text, int min, int m
     long long value = 0;
     const char* end = digits.data() + digits.size();
     const auto [ptr, ec] = std::from_chars(digits.data(), end, value);
-    const std::string range = option + " " + text + " is out of range (" + std::to_string(min) +
-                              " to " + std::to_string(max) + ")";
+    const std::string range = option + " " + show_token(text) + " is out of range (" +
+                              std::to_string(min) + " to " + std::to_string(max) + ")";
     if (ec == std::errc::result_out_of_range && ptr == end) throw UsageError{range};
     if (ec != std::errc() || ptr != end || digits.empty())
-        throw UsageError{option + " expects a whole number, got '" + text + "'"};
+        throw UsageError{option + " expects a whole number, got " + quote_token(text)};
     if (value < min || value > max) throw UsageError{range};
     return static_cast<int>(value);
 }
@@ -50,12 +51,13 @@ double parse_double(const std::string& option, const std::string& text) {
     // Out of range is too large or, closer to 0 than a double can be and not 0, too small.
     if (ec == std::errc::result_out_of_range && ptr == end) {
         if (std::fabs(std::strtod(std::string(digits).c_str(), nullptr)) < 1)
-            throw UsageError{option + " " + text +
+            throw UsageError{option + " " + show_token(text) +
                              " is too small to tell from 0 (below about 4.9e-324); write 0"};
-        throw UsageError{option + " " + text + " is out of range (above about 1.8e308)"};
+        throw UsageError{option + " " + show_token(text) +
+                         " is out of range (above about 1.8e308)"};
     }
     if (ec != std::errc() || ptr != end || digits.empty() || !std::isfinite(value) || value < 0)
-        throw UsageError{option + " expects a number >= 0, got '" + text + "'"};
+        throw UsageError{option + " expects a number >= 0, got " + quote_token(text)};
     return value;
 }
 
@@ -63,8 +65,8 @@ double parse_double(const std::string& option, const std::string& text) {
 ImageSize parse_size(const std::string& text) {
     const auto x = text.find('x');
     const auto bad = [&] {
-        return UsageError{"--size expects WIDTHxHEIGHT in pixels (such as 640x480), got '" + text +
-                          "'"};
+        return UsageError{"--size expects WIDTHxHEIGHT in pixels (such as 640x480), got " +
+                          quote_token(text)};
     };
     if (x == std::string::npos) throw bad();
     ImageSize size;
@@ -74,14 +76,15 @@ ImageSize parse_size(const std::string& text) {
             ec == std::errc::invalid_argument)
             throw bad();
         if (ec == std::errc::result_out_of_range || out < 1 || out > kMaxResolution)
-            throw UsageError{"--size " + text + " is out of range: each side must be from 1 to " +
+            throw UsageError{"--size " + show_token(text) +
+                             " is out of range: each side must be from 1 to " +
                              std::to_string(kMaxResolution) + " pixels"};
     };
     const std::string_view whole(text);
     side(whole.substr(0, x), size.width);
     side(whole.substr(x + 1), size.height);
     if (static_cast<long>(size.width) * size.height > kMaxPixels)
-        throw UsageError{"--size " + text + " is out of range: at most " +
+        throw UsageError{"--size " + show_token(text) + " is out of range: at most " +
                          std::to_string(kMaxPixels) + " pixels in all"};
     return size;
 }
@@ -90,8 +93,8 @@ ImageSize parse_size(const std::string& text) {
 // is known only once the scene is read.
 PixelRect parse_region(const std::string& text) {
     const auto bad = [&] {
-        return UsageError{"--region expects x0,x1,y0,y1 (whole numbers, x0 < x1, y0 < y1), got '" +
-                          text + "'"};
+        return UsageError{"--region expects x0,x1,y0,y1 (whole numbers, x0 < x1, y0 < y1), got " +
+                          quote_token(text)};
     };
     int v[4] = {};
     const char* p = text.data();
@@ -105,13 +108,14 @@ PixelRect parse_region(const std::string& text) {
     if (p != end) throw bad();
     const PixelRect region{v[0], v[2], v[1], v[3]};
     if (region.empty())
-        throw UsageError{"--region " + text + " is empty: it needs x0 < x1 and y0 < y1"};
+        throw UsageError{"--region " + show_token(text) +
+                         " is empty: it needs x0 < x1 and y0 < y1"};
     return region;
 }
 
 ImageFormat parse_format(const std::string& text) {
     if (const auto format = parse_format_name(text)) return *format;
-    throw UsageError{"-f expects ppm, png or pfm, got '" + text + "'"};
+    throw UsageError{"-f expects ppm, png or pfm, got " + quote_token(text)};
 }
 
 // The format the output's name asks for; a name without an extension is PPM, as standard
@@ -121,8 +125,8 @@ ImageFormat format_of_output(const std::string& output) {
     bool has_extension = false;
     if (const auto format = format_from_extension(output, &has_extension)) return *format;
     if (!has_extension) return ImageFormat::ppm;
-    throw UsageError{"cannot tell the image format of '" + output +
-                     "' from its extension: name it .ppm, .png or .pfm, or give -f ppm|png|pfm"};
+    throw UsageError{"cannot tell the image format of " + quote_token(output, kShowWhole) +
+                     " from its extension: name it .ppm, .png or .pfm, or give -f ppm|png|pfm"};
 }
 
 const char* mode_name(RenderMode mode) {
@@ -150,12 +154,13 @@ RenderMode parse_mode(const std::string& text) {
     if (text == "depth") return RenderMode::depth;
     if (text == "colour" || text == "color") return RenderMode::colour;
     if (text == "normal") return RenderMode::normal;
-    throw UsageError{"-m expects trace, depth, colour or normal, got '" + text + "'"};
+    throw UsageError{"-m expects trace, depth, colour or normal, got " + quote_token(text)};
 }
 
 void set_input(CommandLine& cl, bool& have_input, const std::string& arg) {
     if (have_input)
-        throw UsageError{"more than one scene file given ('" + cl.input + "' and '" + arg + "')"};
+        throw UsageError{"more than one scene file given (" + quote_token(cl.input, kShowWhole) +
+                         " and " + quote_token(arg, kShowWhole) + ")"};
     cl.input = arg;
     have_input = true;
 }
@@ -240,43 +245,16 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     bool have_samples = false;
     std::optional<ImageFormat> format;
     bool have_bits = false;
-    bool options_ended = false;
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        std::string arg = args[i];
-        // After "--" every argument is a scene name, even one that starts with '-'.
-        if (!options_ended && arg == "--") {
-            options_ended = true;
+    OptionReader options(args, "dwmsajofM");
+    while (options.next()) {
+        if (!options.is_option()) {
+            set_input(cl, have_input, options.argument());
             continue;
         }
-        if (options_ended) {
-            set_input(cl, have_input, arg);
-            continue;
-        }
-        std::string value;
-        bool has_inline_value = false;
-        // --name=value and -dVALUE forms.
-        if (arg.rfind("--", 0) == 0) {
-            if (const auto eq = arg.find('='); eq != std::string::npos) {
-                value = arg.substr(eq + 1);
-                arg.resize(eq);
-                has_inline_value = true;
-            }
-        } else if (arg.size() > 2 && arg[0] == '-' &&
-                   std::string_view("dwmsajofM").find(arg[1]) != std::string_view::npos) {
-            value = arg.substr(2);
-            arg.resize(2);
-            has_inline_value = true;
-        }
-        auto take_value = [&]() -> std::string {
-            if (has_inline_value) return value;
-            if (i + 1 >= args.size()) throw UsageError{arg + " needs a value"};
-            return args[++i];
-        };
-        auto no_value = [&] {
-            if (has_inline_value) throw UsageError{arg + " takes no value"};
-        };
+        const std::string& arg = options.argument();
+        const auto take_value = [&] { return options.value(); };
         auto flag = [&](bool& target, bool setting) {
-            no_value();
+            options.no_value();
             target = setting;
         };
 
@@ -289,15 +267,15 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
         } else if (arg == "--bits") {
             const std::string bits = take_value();
             if (bits != "8" && bits != "16")
-                throw UsageError{"--bits expects 8 or 16, got '" + bits + "'"};
+                throw UsageError{"--bits expects 8 or 16, got " + quote_token(bits)};
             cl.image.bits = bits == "8" ? 8 : 16;
             have_bits = true;
         } else if (arg == "--gamma") {
             const std::string text = take_value();
             const auto gamma = parse_gamma(text);
             if (!gamma)
-                throw UsageError{"--gamma expects linear, srgb or a number > 0, got '" + text +
-                                 "'"};
+                throw UsageError{"--gamma expects linear, srgb or a number > 0, got " +
+                                 quote_token(text)};
             cl.image.gamma = *gamma;
         } else if (arg == "--no-metadata") {
             flag(cl.metadata, false);
@@ -347,10 +325,8 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
             flag(cl.help, true);
         } else if (arg == "-V" || arg == "--version") {
             flag(cl.version, true);
-        } else if (arg.size() > 1 && arg[0] == '-') {
-            throw UsageError{"unknown option '" + arg + "'"};
         } else {
-            set_input(cl, have_input, arg);
+            options.unknown();
         }
     }
     if (!cl.depfile.empty()) {

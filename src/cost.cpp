@@ -27,7 +27,7 @@ std::vector<std::string> cost_warnings(const Scene& scene, const RenderOptions& 
         }
     }
     if (options.min_weight == 0 && options.max_depth > kExtremeDepthWithoutCutoff &&
-        (options.reflection || options.refraction))
+        options.reflection && options.refraction && scene.splits_rays)
         warnings.push_back("-d " + std::to_string(options.max_depth) +
                            " with -w 0: each glass surface can double the rays at every level, up "
                            "to 2^" +

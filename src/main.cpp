@@ -24,6 +24,7 @@
 #include "rt/image_io.h"
 #include "rt/interrupt.h"
 #include "rt/jobserver.h"
+#include "rt/message_text.h"
 #include "rt/output_file.h"
 #include "rt/progress.h"
 #include "rt/reader.h"
@@ -88,7 +89,8 @@ int choose_threads(const rt::CommandLine& cl, const rt::JobserverAuth& auth,
     if (auth.kind == rt::JobserverAuth::Kind::disabled) return 1;
     jobs.emplace(auth);
     if (!jobs->usable()) {
-        std::cerr << "rt: warning: " << jobs->problem() << "; rendering on 1 thread (-j N sets "
+        std::cerr << "rt: warning: " << rt::printable_message(jobs->problem())
+                  << "; rendering on 1 thread (-j N sets "
                   << "the number)\n";
         return 1;
     }
@@ -116,7 +118,7 @@ int run(const rt::CommandLine& cl, int threads) {
     }
     if (!cl.quiet)
         for (const std::string& warning : rt::cost_warnings(scene, cl.render))
-            std::cerr << "rt: warning: " << warning << "\n";
+            std::cerr << "rt: warning: " << rt::printable_message(warning) << "\n";
     // The output files are checked and claimed before rendering, so a bad path fails fast,
     // and are only replaced once complete. The files the render reads are never written over.
     rt::ImageEncoding encoding = cl.image;
@@ -176,7 +178,8 @@ int main(int argc, char** argv) {
     try {
         cl = rt::parse_command_line({argv + 1, argv + argc});
     } catch (const rt::UsageError& e) {
-        std::cerr << "rt: " << e.message << "\nTry 'rt --help' for more information.\n";
+        std::cerr << "rt: " << rt::printable_message(e.message)
+                  << "\nTry 'rt --help' for more information.\n";
         return kExitUsage;
     }
     if (cl.help) return print(rt::usage_text());
@@ -196,20 +199,22 @@ int main(int argc, char** argv) {
                       << rt::interrupt::tokens_held() << " jobserver tokens\n";
         return run(cl, threads);
     } catch (const LateUsageError& e) {
-        std::cerr << "rt: " << e.message << "\nTry 'rt --help' for more information.\n";
+        std::cerr << "rt: " << rt::printable_message(e.message)
+                  << "\nTry 'rt --help' for more information.\n";
         return kExitUsage;
     } catch (const rt::Error& e) {
-        std::cerr << e.what() << "\n";
+        std::cerr << rt::printable_message(e.what()) << "\n";
     } catch (const std::bad_alloc&) {
         std::cerr << "rt: out of memory\n";
     } catch (const std::system_error& e) {
         // std::thread's way to say the system would not start another thread.
         if (e.code() == std::errc::resource_unavailable_try_again)
-            std::cerr << "rt: cannot start another thread (" << e.what() << "): try a smaller -j\n";
+            std::cerr << "rt: cannot start another thread (" << rt::printable_message(e.what())
+                      << "): try a smaller -j\n";
         else
-            std::cerr << "rt: " << e.what() << "\n";
+            std::cerr << "rt: " << rt::printable_message(e.what()) << "\n";
     } catch (const std::exception& e) {
-        std::cerr << "rt: " << e.what() << "\n";
+        std::cerr << "rt: " << rt::printable_message(e.what()) << "\n";
     }
     return kExitError;
 }

@@ -212,19 +212,21 @@ std::shared_ptr<const Image> SceneReader::texture(std::string_view what) {
     const std::filesystem::path resolved = resolve(written);
     try {
         const FileId file = texture_file(resolved);
+        // Every spelling is a dependency: a symbolic link among them can later be pointed
+        // at another file.
+        if (std::find(texture_paths_.begin(), texture_paths_.end(), resolved) ==
+            texture_paths_.end())
+            texture_paths_.push_back(resolved);
         if (const auto known = textures_.find(file); known != textures_.end()) return known->second;
         auto image = std::make_shared<const Image>(read_ppm(resolved));
         textures_.emplace(file, image);
-        texture_paths_.push_back(resolved);
         return image;
     } catch (const Error& e) {
         // Paths are shown whole (escaped): a user needs all of one to find the file.
         std::string message =
             "cannot read texture " + quote_token(written, kMaxTokenLength) + ": " + e.what();
         if (resolved.string() != written)
-            message += " (looked for " +
-                       quote_token(resolved.string(), std::numeric_limits<std::size_t>::max()) +
-                       ")";
+            message += " (looked for " + quote_token(resolved.string(), kShowWhole) + ")";
         fail(where, message);
     }
 }
@@ -392,6 +394,7 @@ Scene SceneReader::read_scene() {
     while (!lexer_.peek().at_end()) read_top_level_object(scene, have_viewer);
     if (!have_viewer) fail(lexer_.peek().where, "no viewer (102) in the scene; one is required");
     scene.skipped_triangles = skipped_triangles_;
+    scene.splits_rays = splits_rays_;
     return scene;
 }
 

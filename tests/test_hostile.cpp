@@ -106,8 +106,12 @@ TEST(a_texture_is_loaded_once_whatever_it_is_called) {
     std::istringstream in(text);
     SceneReader reader(in, "test.in", dir);
     reader.read_scene();
-    CHECK_EQ(reader.texture_paths().size(), 1u);
+    CHECK_EQ(reader.textures_loaded(), 1u);
+    // -M names each spelling (the absolute one is the first, resolved): make compares the
+    // time of each, and a link can be re-pointed.
+    CHECK_EQ(reader.texture_paths().size(), 4u);
     CHECK_EQ(reader.texture_paths().front().string(), (dir / "tex/t.ppm").string());
+    CHECK_EQ(reader.texture_paths().back().string(), (dir / "link.ppm").string());
 }
 
 TEST(a_texture_that_is_not_a_regular_file_is_refused_without_blocking) {
@@ -237,15 +241,30 @@ TEST(extreme_costs_are_warned_about) {
     CHECK(cost_warnings(scene, options).empty());
     options.min_weight = 0;
     options.max_depth = 30;
-    warnings = cost_warnings(scene, options);
-    CHECK_EQ(warnings.size(), 1u);
-    if (!warnings.empty()) CHECK_CONTAINS(warnings[0], "-d 30 with -w 0");
+    // Mirrors alone send one ray per hit: no doubling, no warning.
+    CHECK(cost_warnings(scene, options).empty());
+    CHECK(cost_warnings(parse_scene(kSmallScene), options).empty());
+    // Glass, or a surface with both ks and kt, sends two.
+    for (const std::string& surface :
+         {std::string(" 114 1 1 1 0 1 0 1.5 0 0 0"), std::string(" 100 1 1 1 .5 1 1 .5 1.5"),
+          std::string(" 107 1 100 1 1 1 0 1 1 0 1 114 1 1 1 0 1 0 1.5 0 0 0")}) {
+        scene = parse_scene(kViewer + "1 1 0 0 0" + surface);
+        warnings = cost_warnings(scene, options);
+        CHECK_EQ(warnings.size(), 1u);
+        if (!warnings.empty()) CHECK_CONTAINS(warnings[0], "-d 30 with -w 0");
+        options.refraction = false;
+        CHECK(cost_warnings(scene, options).empty());
+        options.refraction = true;
+    }
     const fs::path dir = work_dir("hostile_cost");
-    write_file(dir / "s.in", kSmallScene);
-    const RunResult r = run_rt(dir, "-w 0 -d 30 s.in -o out.ppm");
+    write_file(dir / "s.in", kSlowScene);
+    // One pixel at -d 17: at most 2^18 rays.
+    const RunResult r = run_rt(dir, "--size 1x1 -w 0 -d 17 s.in -o out.ppm");
     CHECK_EQ(r.status, 0);
-    CHECK_CONTAINS(r.err, "rt: warning: -d 30 with -w 0: each glass surface can double the rays");
-    CHECK_EQ(run_rt(dir, "-q -w 0 -d 30 s.in -o out.ppm").err, std::string());
+    CHECK_CONTAINS(r.err, "rt: warning: -d 17 with -w 0: each glass surface can double the rays");
+    CHECK_EQ(run_rt(dir, "-q --size 1x1 -w 0 -d 17 s.in -o out.ppm").err, std::string());
+    write_file(dir / "s.in", kSmallScene);
+    CHECK_EQ(run_rt(dir, "--size 1x1 -w 0 -d 17 s.in -o out.ppm").err, std::string());
 }
 
 TEST(read_errors_on_the_scene_are_reported_with_their_reason) {
@@ -273,3 +292,41 @@ TEST(a_thread_that_cannot_start_gives_a_hint) {
     CHECK(!fs::exists(dir / "out.ppm"));
 }
 #endif
+
+TEST(command_line_values_are_shown_escaped_and_cut) {
+    const fs::path dir = work_dir("hostile_arguments");
+    const std::string escape = "\"$(printf '\\033[31mred')\"";
+    RunResult r = run_rt(dir, "-m " + escape);
+    CHECK_EQ(r.status, 2);
+    CHECK_EQ(r.err, std::string("rt: -m expects trace, depth, colour or normal, got "
+                                "'\\x1b[31mred'\nTry 'rt --help' for more information.\n"));
+    r = run_rt(dir, "-d " + std::string(100, '9'));
+    CHECK_EQ(r.status, 2);
+    CHECK_CONTAINS(r.err, "rt: -d 9999999999999999999999999999999999999999... (100 bytes) is out "
+                          "of range (0 to 64)\n");
+    // A file name is shown whole, escaped.
+    r = run_rt(dir, "--no-bvh=1 a.in " + escape + "x.in");
+    CHECK_EQ(r.status, 2);
+    CHECK_CONTAINS(r.err, "rt: --no-bvh takes no value\n");
+    r = run_rt(dir, "a.in " + escape + "x.in");
+    CHECK_EQ(r.err, std::string("rt: more than one scene file given ('a.in' and "
+                                "'\\x1b[31mredx.in')\nTry 'rt --help' for more information.\n"));
+    // Whatever builds a message, no program lets a control byte reach the terminal.
+    r = run_rt(dir, escape + ".in -o out.ppm");
+    CHECK_EQ(r.status, 1);
+    CHECK_CONTAINS(r.err, "\\x1b[31mred.in");
+    CHECK(r.err.find('\x1b') == std::string::npos);
+    r = run_program(RTPP_BINARY, dir, "--" + escape);
+    CHECK_EQ(r.status, 2);
+    CHECK_CONTAINS(r.err, "rtpp: unknown option '--\\x1b[31mred'\n");
+    r = run_program(RTPP_BINARY, dir, escape + ".rts");
+    CHECK_EQ(r.status, 1);
+    CHECK(r.err.find('\x1b') == std::string::npos);
+    r = run_rtimg(dir, "info " + escape + ".png");
+    CHECK_EQ(r.status, 1);
+    CHECK_CONTAINS(r.err, "\\x1b[31mred.png");
+    CHECK(r.err.find('\x1b') == std::string::npos);
+    r = run_rtimg(dir, "info --" + escape);
+    CHECK_EQ(r.status, 2);
+    CHECK_CONTAINS(r.err, "rtimg: unknown option '--\\x1b[31mred'\n");
+}

@@ -361,6 +361,15 @@ TEST(the_command_line_follows_rts_conventions) {
     CHECK_EQ(run("--bogus"), 2);
     CHECK_CONTAINS(read_file(dir / "err.txt"), "rtpp: unknown option '--bogus'");
     CHECK_EQ(run("-I"), 2);
+    CHECK_CONTAINS(read_file(dir / "err.txt"), "rtpp: -I needs a value");
+    CHECK_EQ(run("--help=1"), 2);
+    CHECK_CONTAINS(read_file(dir / "err.txt"), "rtpp: --help takes no value");
+    CHECK_EQ(run("ok.rts ok.rts"), 2);
+    CHECK_CONTAINS(read_file(dir / "err.txt"), "more than one scene given ('ok.rts' and 'ok.rts')");
+    // After "--" a name starting with '-' is the scene; values may be joined to -o and -I.
+    write_file(dir / "-dash.rts", kCamera);
+    CHECK_EQ(run("-okeep.in -- -dash.rts"), 0);
+    CHECK_CONTAINS(read_file(dir / "keep.in"), "102 0 0 5");
     CHECK_EQ(run("missing.rts"), 1);
     CHECK_CONTAINS(read_file(dir / "err.txt"), "missing.rts: cannot open");
 }

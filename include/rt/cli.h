@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "rt/image_io.h"
+#include "rt/option_reader.h"
 #include "rt/options.h"
 
 namespace rt {
@@ -38,10 +39,6 @@ struct CommandLine {
 };
 
 // Throws UsageError for anything it cannot make sense of.
-struct UsageError {
-    std::string message;
-};
-
 CommandLine parse_command_line(const std::vector<std::string>& args);
 
 // What the image file records about what made it: "Software" (rt and its version), "Scene"

@@ -10,6 +10,8 @@
 #include <string_view>
 #include <vector>
 
+#include "rt/message_text.h"  // how messages show a token
+
 namespace rt {
 
 // 64-bit counters: a line of more than 2^31 bytes must not wrap into negative columns.
@@ -33,14 +35,6 @@ struct Token {
 // The longest token rt accepts; a longer one is an error, so no input makes the lexer
 // allocate without bound.
 inline constexpr std::size_t kMaxTokenLength = 4096;
-
-// A token as messages show it, in single quotes: bytes that could drive a terminal (control
-// characters, invalid UTF-8) written as \xNN, and a long token cut to its first characters.
-// The default limit is enough to recognise a token and too little to copy much of a file that
-// is not a scene onto the terminal; paths are shown whole.
-std::string quote_token(std::string_view text, std::size_t limit = 40);
-// The same without the quotes, for numbers shown as written.
-std::string show_token(std::string_view text, std::size_t limit = 40);
 
 class Lexer {
   public:

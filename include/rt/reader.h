@@ -66,10 +66,11 @@ class SceneReader {
     // Each file (by device and inode) is loaded once per scene however many surfaces name it,
     // by whatever path.
     std::shared_ptr<const Image> texture(std::string_view what);
-    // The texture files loaded so far, each once, in the order first named (by the first
-    // name used, resolved against the scene's directory): what an image made from the scene depends
-    // on.
+    // Every path that named a texture so far, resolved against the scene's directory, each
+    // once, in the order first named: what an image made from the scene depends on (-M).
     const std::vector<std::filesystem::path>& texture_paths() const { return texture_paths_; }
+    // How many texture files were loaded: one per file, whatever it was called.
+    std::size_t textures_loaded() const { return textures_.size(); }
 
     // Nested objects: an inner primitive (ID and numbers, no surface), a surface (ID and
     // numbers, or 106 for the current default), a positioned light (ID and numbers).
@@ -81,6 +82,8 @@ class SceneReader {
     // A mesh reports the zero-area triangles it skipped; the scene carries the total.
     void count_skipped_triangles(std::size_t count) { skipped_triangles_ += count; }
     std::size_t skipped_triangles() const { return skipped_triangles_; }
+    // A surface read reflects and transmits from one hit (Scene::splits_rays).
+    void note_splitting_surface() { splits_rays_ = true; }
 
     // Where the next token starts: read it before a field to report errors about that field.
     Location next_location() { return lexer_.peek().where; }
@@ -132,6 +135,7 @@ class SceneReader {
     ObjectStart last_object_;       // the object (at any depth) whose ID was read last
     ObjectStart top_level_object_;  // the top-level object that holds it
     std::size_t skipped_triangles_ = 0;
+    bool splits_rays_ = false;
     int threads_ = 1;
 };
 

@@ -30,6 +30,9 @@ struct Scene {
     ObjectIndex index;      // the hierarchy over `objects`, once build_index() has run
     // Zero-area triangles that meshes left out (they are accepted, not errors).
     std::size_t skipped_triangles = 0;
+    // Whether some surface can send both a mirror ray and a refracted ray from one hit (glass,
+    // or ks and kt both above 0): only then can the rays of a pixel grow exponentially with -d.
+    bool splits_rays = false;
 
     // Builds the hierarchy over the objects on up to `threads` threads (the same hierarchy
     // for any number); read_scene() and read_scene_file() call it.

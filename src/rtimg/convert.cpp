@@ -1,5 +1,6 @@
 // rtimg convert IN OUT: another format, bit depth or gamma; the metadata comes along.
 #include "rt/image_file.h"
+#include "rt/message_text.h"
 #include "rt/output_file.h"
 #include "rtimg.h"
 
@@ -14,14 +15,14 @@ int convert(const std::vector<std::string>& args) {
     if (a.has("--gamma")) {
         gamma = rt::parse_gamma(a.values.at("--gamma"));
         if (!gamma)
-            throw UsageError{"--gamma expects linear, srgb or a number > 0, got '" +
-                             a.values.at("--gamma") + "'"};
+            throw UsageError{"--gamma expects linear, srgb or a number > 0, got " +
+                             rt::quote_token(a.values.at("--gamma"))};
     }
     encoding.gamma = *gamma;
     if (a.has("--bits")) {
         const std::string& bits = a.values.at("--bits");
         if (bits != "8" && bits != "16")
-            throw UsageError{"--bits expects 8 or 16, got '" + bits + "'"};
+            throw UsageError{"--bits expects 8 or 16, got " + rt::quote_token(bits)};
         if (encoding.format == rt::ImageFormat::pfm)
             throw UsageError{"--bits does not apply to PFM, which always holds 32-bit floats"};
         encoding.bits = bits == "8" ? 8 : 16;

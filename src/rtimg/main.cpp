@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "rt/error.h"
+#include "rt/message_text.h"
 #include "rtimg.h"
 
 int main(int argc, char** argv) {
@@ -28,14 +29,15 @@ int main(int argc, char** argv) {
         if (command == "convert") return rtimg::convert(rest);
         if (command == "info") return rtimg::info(rest);
         throw rtimg::UsageError{command.empty() ? "no command given"
-                                                : "unknown command '" + command + "'"};
+                                                : "unknown command " + rt::quote_token(command)};
     } catch (const rtimg::UsageError& e) {
-        std::cerr << "rtimg: " << e.message << "\nTry 'rtimg --help' for more information.\n";
+        std::cerr << "rtimg: " << rt::printable_message(e.message)
+                  << "\nTry 'rtimg --help' for more information.\n";
         return rtimg::kExitUsage;
     } catch (const std::bad_alloc&) {
         std::cerr << "rtimg: out of memory\n";
     } catch (const std::exception& e) {
-        std::cerr << "rtimg: " << e.what() << "\n";
+        std::cerr << "rtimg: " << rt::printable_message(e.what()) << "\n";
     }
     return error_status;
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "rt/image_io.h"
+#include "rt/option_reader.h"
 
 namespace rtimg {
 
@@ -15,9 +16,7 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitFail = 1;   // diff: the images differ too much; others: an error
 inline constexpr int kExitUsage = 2;  // the command line made no sense (diff: any error)
 
-struct UsageError {
-    std::string message;
-};
+using rt::UsageError;
 
 // Positional arguments and --option values (-o is --output), "--name=value" or "--name value".
 struct Arguments {

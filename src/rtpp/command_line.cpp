@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iostream>
 
+#include "rt/message_text.h"
 #include "rtpp/source.h"
 
 namespace rtpp {
@@ -31,29 +32,19 @@ exit status: 0 success, 1 scene or input/output error, 2 usage error
 CommandLine parse_command_line(const std::vector<std::string>& args) {
     CommandLine cl;
     bool have_input = false;
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        std::string arg = args[i];
-        std::string value;
-        bool inline_value = false;
-        if (arg.rfind("--", 0) == 0) {
-            if (const auto eq = arg.find('='); eq != std::string::npos) {
-                value = arg.substr(eq + 1);
-                arg.resize(eq);
-                inline_value = true;
-            }
-        } else if (arg.size() > 2 && arg[0] == '-' && (arg[1] == 'o' || arg[1] == 'I')) {
-            value = arg.substr(2);
-            arg.resize(2);
-            inline_value = true;
+    rt::OptionReader options(args, "oI");
+    while (options.next()) {
+        const std::string& arg = options.argument();
+        if (!options.is_option()) {
+            if (have_input)
+                throw UsageError{"more than one scene given (" +
+                                 rt::quote_token(cl.input, rt::kShowWhole) + " and " +
+                                 rt::quote_token(arg, rt::kShowWhole) + ")"};
+            cl.input = arg;
+            have_input = true;
+            continue;
         }
-        const auto take_value = [&]() -> std::string {
-            if (inline_value) return value;
-            if (i + 1 >= args.size()) throw UsageError{arg + " needs a value"};
-            return args[++i];
-        };
-        const auto no_value = [&] {
-            if (inline_value) throw UsageError{arg + " takes no value"};
-        };
+        const auto take_value = [&] { return options.value(); };
         if (arg == "-o" || arg == "--output") {
             cl.output = take_value();
             if (cl.output.empty()) throw UsageError{"-o needs a file name"};
@@ -62,19 +53,13 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
             if (dir.empty()) throw UsageError{"-I needs a directory"};
             cl.include_dirs.push_back(dir);
         } else if (arg == "-h" || arg == "--help") {
-            no_value();
+            options.no_value();
             cl.help = true;
         } else if (arg == "-V" || arg == "--version") {
-            no_value();
+            options.no_value();
             cl.version = true;
-        } else if (arg.size() > 1 && arg[0] == '-') {
-            throw UsageError{"unknown option '" + arg + "'"};
         } else {
-            if (have_input)
-                throw UsageError{"more than one scene given ('" + cl.input + "' and '" + arg +
-                                 "')"};
-            cl.input = arg;
-            have_input = true;
+            options.unknown();
         }
     }
     return cl;

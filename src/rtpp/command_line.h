@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "rt/option_reader.h"
+
 namespace rtpp {
 
 struct CommandLine {
@@ -14,9 +16,7 @@ struct CommandLine {
     bool version = false;
 };
 
-struct UsageError {
-    std::string message;
-};
+using rt::UsageError;
 
 CommandLine parse_command_line(const std::vector<std::string>& args);
 const char* usage_text();

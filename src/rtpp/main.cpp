@@ -3,6 +3,7 @@
 #include <iostream>
 #include <new>
 
+#include "rt/message_text.h"
 #include "rtpp/command_line.h"
 #include "rtpp/compiler.h"
 #include "rtpp/source.h"
@@ -18,7 +19,8 @@ int main(int argc, char** argv) {
     try {
         cl = rtpp::parse_command_line({argv + 1, argv + argc});
     } catch (const rtpp::UsageError& e) {
-        std::cerr << "rtpp: " << e.message << "\nTry 'rtpp --help' for more information.\n";
+        std::cerr << "rtpp: " << rt::printable_message(e.message)
+                  << "\nTry 'rtpp --help' for more information.\n";
         return kExitUsage;
     }
     if (cl.help) {
@@ -35,11 +37,11 @@ int main(int argc, char** argv) {
         rtpp::write_output(cl.output, rtpp::compile_file(cl.input, options));
         return kExitOk;
     } catch (const rtpp::CompileError& e) {
-        std::cerr << e.what() << "\n";
+        std::cerr << rt::printable_message(e.what()) << "\n";
     } catch (const std::bad_alloc&) {
         std::cerr << "rtpp: out of memory\n";
     } catch (const std::exception& e) {
-        std::cerr << "rtpp: " << e.what() << "\n";
+        std::cerr << "rtpp: " << rt::printable_message(e.what()) << "\n";
     }
     return kExitError;
 }

@@ -13,6 +13,7 @@ SurfaceData read(SceneReader& reader) {
     m.ior = reader.positive("glass ior (refractive index)");
     m.absorption = read_non_negative_spectrum(reader, "glass absorption");
     m.fresnel = true;
+    reader.note_splitting_surface();  // F and 1 - F: both rays, short of total reflection
     return std::make_shared<const Material>(m);
 }
 

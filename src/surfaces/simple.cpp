@@ -31,7 +31,9 @@ Material read_material(SceneReader& reader) {
     const Location ior_at = reader.next_location();
     m.ior = reader.number("surface ior (refractive index)");
     if (m.kt > 0 && !(m.ior > 0))
-        reader.fail(ior_at, "surface ior must be > 0 when kt > 0, got " + reader.last_number_text());
+        reader.fail(ior_at,
+                    "surface ior must be > 0 when kt > 0, got " + reader.last_number_text());
+    if (m.ks > 0 && m.kt > 0) reader.note_splitting_surface();
     return m;
 }
 

@@ -1,0 +1,25 @@
+// How messages show text that came from outside (a scene's tokens, file names, command-line
+// values): bytes that could drive a terminal (control characters, invalid UTF-8, C1
+// controls) written as \xNN; valid UTF-8 kept.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace rt {
+
+// The limit that shows text whole: file names, since a user needs all of one.
+inline constexpr std::size_t kShowWhole = std::string_view::npos;
+
+// A token as messages show it, in single quotes, cut to its first `limit` bytes (with its
+// length said). The default is enough to recognise a token and too little to copy much of a
+// file that is not a scene onto the terminal.
+std::string quote_token(std::string_view text, std::size_t limit = 40);
+// The same without the quotes, for numbers shown as written.
+std::string show_token(std::string_view text, std::size_t limit = 40);
+
+// A whole message made safe for a terminal, as the programs print every message: its lines
+// kept, anything else escaped. Text already escaped is unchanged.
+std::string printable_message(std::string_view message);
+
+}  // namespace rt

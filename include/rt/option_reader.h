@@ -1,0 +1,49 @@
+// The command-line conventions rt, rtpp and rtimg share, read in one place: "--name=value"
+// or "--name value", "-xVALUE" or "-x VALUE" for the short options that take a value, "--"
+// ending the options, and "-" alone an operand (standard input or output).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace rt {
+
+// A mistake on the command line: the programs print it with a pointer to --help, exit 2.
+struct UsageError {
+    std::string message;
+};
+
+class OptionReader {
+  public:
+    // `short_with_value` lists the letters of the short options that take a value ("do" for
+    // -d and -o), which may then be written joined to it (-d7).
+    OptionReader(const std::vector<std::string>& args, std::string_view short_with_value);
+
+    // Moves to the next argument; false when none is left. "--" itself is skipped.
+    bool next();
+    // Whether the argument is an option ("-x", "--name"); operands are not, nor is anything
+    // after "--".
+    bool is_option() const { return is_option_; }
+    // The option's name without a value written with it, or the operand as given.
+    const std::string& argument() const { return name_; }
+    // The option's value: written with it, or else the next argument.
+    std::string value();
+    // Refuses a value written with an option that takes none (--quiet=1).
+    void no_value() const;
+    // The error for an option the program does not have.
+    [[noreturn]] void unknown() const;
+
+  private:
+    const std::vector<std::string>& args_;
+    std::string_view short_with_value_;
+    std::size_t next_ = 0;
+    bool options_ended_ = false;
+    bool is_option_ = false;
+    std::string name_;
+    std::string joined_value_;
+    bool has_joined_value_ = false;
+};
+
+}  // namespace rt
