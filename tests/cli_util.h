@@ -60,8 +60,16 @@ inline RunResult run_program(const std::string& program, const std::filesystem::
     return result;
 }
 
+// The rt the tests run: the one just built, or RT_TEST_BINARY when set, so that the same
+// tests can be run against an installed rt or an older one (to see a test fail without its
+// fix).
+inline std::string rt_binary() {
+    const char* other = std::getenv("RT_TEST_BINARY");
+    return other != nullptr && *other != '\0' ? other : RT_BINARY;
+}
+
 inline RunResult run_rt(const std::filesystem::path& dir, const std::string& args) {
-    return run_program(RT_BINARY, dir, args);
+    return run_program(rt_binary(), dir, args);
 }
 
 inline RunResult run_rtimg(const std::filesystem::path& dir, const std::string& args) {

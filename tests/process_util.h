@@ -45,7 +45,7 @@ inline SpawnOptions stdout_to(int fd) {
 inline pid_t spawn_rt(const std::filesystem::path& dir, const std::vector<std::string>& args,
                       const SpawnOptions& options = {}) {
     // Everything the child needs is prepared before fork(): after it, only plain calls.
-    std::vector<std::string> words = {RT_BINARY};
+    std::vector<std::string> words = {rt_binary()};
     words.insert(words.end(), args.begin(), args.end());
     std::vector<char*> argv;
     for (std::string& w : words) argv.push_back(w.data());

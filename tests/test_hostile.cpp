@@ -283,8 +283,7 @@ TEST(a_thread_that_cannot_start_gives_a_hint) {
     // Too little address space for 1024 thread stacks: rt says what to do about it.
     const fs::path dir = work_dir("hostile_threads");
     write_file(dir / "s.in", "102 0 0 5 0 0 0 1 0 0 0 1 0 4 1024\n101 2 3 4 1 1 1\n");
-    const std::string command = "cd '" + dir.string() +
-                                "' && (ulimit -v 400000; '" RT_BINARY
+    const std::string command = "cd '" + dir.string() + "' && (ulimit -v 400000; '" + rt_binary() +
                                 "' -j 1024 s.in -o out.ppm) 2>rt.err; echo $? >rt.status";
     CHECK_EQ(std::system(command.c_str()), 0);
     CHECK_EQ(read_file(dir / "rt.status"), std::string("1\n"));
@@ -302,8 +301,9 @@ TEST(command_line_values_are_shown_escaped_and_cut) {
                                 "'\\x1b[31mred'\nTry 'rt --help' for more information.\n"));
     r = run_rt(dir, "-d " + std::string(100, '9'));
     CHECK_EQ(r.status, 2);
-    CHECK_CONTAINS(r.err, "rt: -d 9999999999999999999999999999999999999999... (100 bytes) is out "
-                          "of range (0 to 64)\n");
+    CHECK_CONTAINS(r.err,
+                   "rt: -d 9999999999999999999999999999999999999999... (100 bytes) is out "
+                   "of range (0 to 64)\n");
     // A file name is shown whole, escaped.
     r = run_rt(dir, "--no-bvh=1 a.in " + escape + "x.in");
     CHECK_EQ(r.status, 2);
