@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "rt/trace.h"
@@ -491,6 +492,33 @@ TEST(cross_reports_invisible_crossings) {
             inside_now = crossing.entering;
             range.t_min = t * (1 + 1e-12) + 1e-12;
         }
+    }
+}
+
+TEST(a_ray_with_no_direction_gives_no_crossing) {
+    // A libFuzzer find: a cylinder hit 1.6e116 along a ray rounded to a point on its axis,
+    // where its normal is 0/0, and the mirror ray from there had a NaN direction. The quadric
+    // operand of a composite gave that ray a crossing at NaN, and the composite's merge, which
+    // moves on by comparing distances, never moved past it: rt hung. Neither cross nor
+    // intersect may give a NaN distance, and a composite must end its list.
+    Spec spec;
+    spec.k = {1, -0.3, 1, 0, 0, 0, -1.05, 0.18, 0.05, 0.957};
+    spec.min = {0, 0, -1};
+    spec.max = {2.1, 1.1e46, 1};
+    const Shape s = spec.shape();
+    const Shape composite = parse_shape(
+        "20 " +
+        object_text(13, {1, -0.3, 1, 0, 0, 0, -1.05, 0.18, 0.05, 0.957, 0, 0, -1, 2.1, 1.1e46, 1}) +
+        " 100 1 1 1 0 1 1 0 1  1 1 0 0 0  100 1 1 1 0 1 1 0 1");
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (const Ray& ray : {Ray{{0, 0, 0}, {nan, nan, nan}}, Ray{{nan, 0, 0}, {0, 0, 1}}}) {
+        Crossing crossing;
+        CHECK(!s.cross(ray, {1e-7, kInfinity}, crossing));
+        CHECK(!first_hit(s, ray).has_value());
+        Crossings list;
+        composite.collect(ray, 1e-7, list);
+        CHECK(list.empty());
+        CHECK(!first_hit(composite, ray).has_value());
     }
 }
 

@@ -133,7 +133,9 @@ bool collect(const void* shape, const Ray& ray, double t_min, Crossings& out) {
     const bool started_inside = in_set(c.operation, in_a, in_b);
 
     // Merge the two lists, appending the composite's crossings after them. Crossings at the
-    // same distance are taken together, so coincident faces that cancel leave nothing.
+    // same distance are taken together, so coincident faces that cancel leave nothing. Each
+    // pass consumes at least one crossing because no distance is NaN (Shape::collect stops
+    // at a crossing it cannot place).
     bool inside_now = started_inside;
     std::size_t i = a_begin, j = b_begin;
     while (i < b_begin || j < b_end) {

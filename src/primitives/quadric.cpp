@@ -227,7 +227,7 @@ bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
     const Roots roots = solve(along.a, along.b, along.c);
     for (int i = 0; i < roots.count; ++i) {
         const double t = along.offset + roots.s[static_cast<std::size_t>(i)];
-        if (t <= range.t_min) continue;
+        if (!(t > range.t_min)) continue;  // NaN too (a ray with no direction)
         if (t >= range.t_max) return false;
         if (!visible_at(s, ray, t)) continue;  // clipped: the far root may still show
         hit = {t, 0};
@@ -243,7 +243,7 @@ bool cross(const void* shape, const Ray& ray, Interval range, Crossing& crossing
     if (roots.touching) return false;  // a tangent ray stays on one side
     for (int i = 0; i < roots.count; ++i) {
         const double t = along.offset + roots.s[static_cast<std::size_t>(i)];
-        if (t <= range.t_min) continue;
+        if (!(t > range.t_min)) continue;  // NaN too (a ray with no direction)
         if (t >= range.t_max) return false;
         // The sign of the quadratic's slope at the root, read from its shape rather than
         // from a rounded gradient, so crossings alternate in and out along the ray.

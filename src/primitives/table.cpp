@@ -106,6 +106,10 @@ bool Shape::collect(const Ray& ray, double t_min, Crossings& out) const {
     bool started_inside = false;
     bool inside_now = false;
     for (int i = 0; i < kMaxSimpleCrossings && cross(ray, {from, kInfinity}, crossing); ++i) {
+        // A crossing must lie past the last: one that does not (NaN, from arithmetic that
+        // overflowed or a ray with no direction) cannot be placed on the ray, and would stall
+        // a composite's merge.
+        if (!(crossing.hit.t > from)) break;
         if (i == 0) started_inside = inside_now = !crossing.entering;
         // A crossing that does not change sides (a tangent touch) changes nothing.
         if (crossing.entering != inside_now) {
