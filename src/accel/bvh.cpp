@@ -190,7 +190,9 @@ Builder::SahSplit Builder::sah_split(const Range& range, int axis, double extent
     const auto last = static_cast<float>(bin_count - 1);
     auto bin_of = [&](const Reference& r) {
         const float b = (r.centre[axis] - origin) * scale;  // >= 0
-        return static_cast<std::size_t>(b < last ? b : last);
+        // NaN (0 * inf for a very thin range) goes to the last bin. Through int: a float's
+        // conversion to an unsigned 64-bit type takes a branch.
+        return static_cast<std::size_t>(static_cast<int>(b < last ? b : last));
     };
     std::array<Bin, kBins> bins;
     for (std::uint32_t i = range.begin; i < range.end; ++i) {
