@@ -107,7 +107,8 @@ int run(const rt::CommandLine& cl, int threads) {
         throw LateUsageError{*problem};
     if (cl.read_only) {
         std::ostringstream summary;
-        const std::string name = cl.input == "-" ? "<stdin>" : cl.input;
+        const std::string name =
+            cl.input == "-" ? "<stdin>" : rt::show_token(cl.input, rt::kShowWhole);
         summary << name << ": " << scene.objects.size() << " objects, " << scene.lights.size()
                 << " lights, " << scene.viewer.xres << "x" << scene.viewer.yres;
         if (const std::size_t n = scene.skipped_triangles; n != 0)

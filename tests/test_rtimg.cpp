@@ -244,6 +244,13 @@ TEST(info_describes_an_image) {
                    "region: none (a whole image)\nmade by: unknown\n");
     CHECK_CONTAINS(run_rtimg(dir, "info g.pfm").out, "red  1  1  1\n");
     CHECK_EQ(run_rtimg(dir, "info missing.png").status, 1);
+    // Metadata is the file's to choose: shown escaped, so it cannot drive the terminal.
+    write_file(dir / "evil.ppm",
+               "P6\n# Software: \x1b]0;owned\x07\n# Scene: a\x1b[2Jb\n1 1\n255\nabc");
+    const RunResult evil = run_rtimg(dir, "info evil.ppm");
+    CHECK_EQ(evil.status, 0);
+    CHECK_CONTAINS(evil.out, "made by: \\x1b]0;owned\\x07\nScene: a\\x1b[2Jb\n");
+    CHECK(evil.out.find('\x1b') == std::string::npos);
 }
 
 TEST(png_files_another_encoder_wrote_decode_to_its_ppm_pixels) {

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "rt/image_merge.h"
+#include "rt/message_text.h"
 #include "rtimg.h"
 
 namespace rtimg {
@@ -29,7 +30,10 @@ int info(const std::vector<std::string>& args) {
     const Arguments a = parse_arguments(args, {}, {});
     if (a.files.size() != 1) throw UsageError{"info needs one image: rtimg info FILE"};
     const rt::ImageFile f = rt::read_image_file(a.files[0]);
-    std::cout << "file: " << a.files[0] << "\n"
+    // The name and the metadata are shown escaped, one line each: an image's text chunks can
+    // hold anything, terminal escape sequences and newlines included.
+    const auto shown = [](const std::string& text) { return rt::show_token(text, rt::kShowWhole); };
+    std::cout << "file: " << shown(a.files[0]) << "\n"
               << "format: " << rt::format_name(f.format) << " (" << f.variant << ")\n"
               << "size: " << f.width() << "x" << f.height() << "\n"
               << "bit depth: " << f.bits() << (f.format == rt::ImageFormat::pfm ? " (float)" : "")
@@ -41,10 +45,10 @@ int info(const std::vector<std::string>& args) {
     else
         std::cout << "region: none (a whole image)\n";
     const std::string* software = f.metadata.find("Software");
-    std::cout << "made by: " << (software ? *software : "unknown") << "\n";
+    std::cout << "made by: " << (software ? shown(*software) : "unknown") << "\n";
     for (const auto& [key, value] : f.metadata.entries)
         if (key != "Software" && key != "Region" && key != "Full-Size")
-            std::cout << key << ": " << value << "\n";
+            std::cout << shown(key) << ": " << shown(value) << "\n";
     // Samples as stored (0 to 255 or 65535), or PFM's floats.
     std::cout << "channel  min  max  mean\n";
     for (int c = 0; c < f.channels(); ++c) {
