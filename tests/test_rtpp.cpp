@@ -300,7 +300,9 @@ TEST(limits_stop_runaway_input) {
     }
 }
 
-TEST(a_million_objects_compile_in_seconds) {
+// The time is printed, not checked: timings belong in benchmarks, and a shared machine or a
+// sanitizer build can take many times as long.
+TEST(a_million_objects_compile) {
     const auto start = std::chrono::steady_clock::now();
     const std::string out =
         rtpp::compile(kCamera +
@@ -311,7 +313,6 @@ TEST(a_million_objects_compile_in_seconds) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cout << "  1,000,000 spheres: " << seconds << " s, " << out.size() / 1000000 << " MB\n";
-    CHECK(seconds < 20);
     std::istringstream in(out);
     CHECK_EQ(rt::SceneReader(in, "million", {}).read_scene().objects.size(), 1000000u);
 }
