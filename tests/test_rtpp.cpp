@@ -230,6 +230,18 @@ TEST(errors_name_their_place) {
     for (const auto& [source, message] : cases) CHECK_CONTAINS(error_of(source), message);
 }
 
+TEST(an_error_in_a_loop_names_the_pass) {
+    // The body is the same on every pass, so the place alone does not say which failed.
+    CHECK_EQ(error_of(kCamera + "for i = 0 to 3 {\n  for j = 0 to 1 {\n"
+                                "    let y = 1 / (i - 2)\n  }\n}\n"),
+             std::string("t.rts:4:15: division by zero\n"
+                         "t.rts:3:3: note: in this loop, where j = 0\n"
+                         "t.rts:2:1: note: in this loop, where i = 2"));
+    CHECK_EQ(error_of(kCamera + "for t = 0 to 1 step 0.25 { let y = 1 / (t - 0.75) }"),
+             std::string("t.rts:2:38: division by zero\n"
+                         "t.rts:2:1: note: in this loop, where t = 0.75"));
+}
+
 TEST(includes_resolve_and_report_their_chain) {
     const fs::path dir = rt_test::work_dir("rtpp-include");
     fs::create_directories(dir / "lib" / "more");

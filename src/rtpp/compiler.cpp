@@ -33,7 +33,10 @@ std::string compile(const std::string& text, const std::string& name,
         }
         emitter.finish({0, line, column});
     } catch (const SourceError& e) {
-        throw CompileError(files.describe(e.pos, e.message));
+        std::string message = files.describe(e.pos, e.message);
+        for (const auto& [pos, note] : e.notes)
+            message += "\n" + files.describe(pos, "note: " + note);
+        throw CompileError(message);
     } catch (const std::bad_alloc&) {
         throw CompileError(name + ": out of memory");
     }

@@ -136,7 +136,14 @@ void Evaluator::run_loop(const Stmt& stmt, Target target) {
                                  ? to
                                  : from + static_cast<double>(k) * step;
         bind(stmt.name, Value::of(value));
-        for (const Stmt& inner : *stmt.body) run_statement(inner, target);
+        try {
+            for (const Stmt& inner : *stmt.body) run_statement(inner, target);
+        } catch (SourceError& e) {
+            // Which pass failed matters as much as where: the body is the same on every one.
+            e.notes.emplace_back(stmt.pos,
+                                 "in this loop, where " + stmt.name + " = " + show(value));
+            throw;
+        }
     }
 }
 

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rtpp {
@@ -50,10 +51,13 @@ class CompileError : public std::runtime_error {
 struct SourceError {
     SourcePos pos;
     std::string message;
+    // Where the error happened besides its place, innermost first: each loop it was inside,
+    // with the loop variable's value then ("for i = 0 to 9" at 3:1, i = 4).
+    std::vector<std::pair<SourcePos, std::string>> notes;
 };
 
 [[noreturn]] inline void fail(SourcePos pos, std::string message) {
-    throw SourceError{pos, std::move(message)};
+    throw SourceError{pos, std::move(message), {}};
 }
 
 }  // namespace rtpp
