@@ -93,6 +93,12 @@ TEST(diff_writes_a_heat_map) {
     CHECK_EQ(rgb(1, 0), "98 0 0");    // 3 > 2: 96 + 159 / 64
     CHECK_EQ(rgb(0, 1), "10 10 10");  // the same: a's grey, a quarter as bright
     CHECK_EQ(rgb(1, 1), "0 0 128");   // 1, within the tolerance
+    // The option conventions rt has: -oFILE, --output=FILE, and "--" before a name with '-'.
+    fs::copy_file(dir / "b.ppm", dir / "-b.ppm");
+    CHECK_EQ(run_rtimg(dir, "diff --tolerance=2 -oheat2.png a.ppm b.ppm").status, 1);
+    CHECK(read_file(dir / "heat2.png") == read_file(dir / "heat.png"));
+    CHECK_EQ(run_rtimg(dir, "diff --tolerance 2 --output=heat3.png -- a.ppm -b.ppm").status, 1);
+    CHECK(read_file(dir / "heat3.png") == read_file(dir / "heat.png"));
 }
 
 TEST(diff_compares_across_formats_and_bit_depths_and_reports_errors) {
