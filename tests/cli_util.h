@@ -1,11 +1,13 @@
 // Runs the rt binary through the shell and captures what it printed and its exit status.
 #pragma once
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace rt_test {
 
@@ -35,6 +37,25 @@ inline std::string read_file(const std::filesystem::path& path) {
 
 inline void write_file(const std::filesystem::path& path, const std::string& text) {
     std::ofstream(path, std::ios::binary) << text;
+}
+
+// The files in `dir` whose extension is `extension` (".in"), sorted, so that every test
+// walks a corpus in the same order.
+inline std::vector<std::filesystem::path> files_with_extension(const std::filesystem::path& dir,
+                                                               const std::string& extension) {
+    std::vector<std::filesystem::path> files;
+    for (const auto& entry : std::filesystem::directory_iterator(dir))
+        if (entry.path().extension() == extension) files.push_back(entry.path());
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+// Runs a command through the shell: its status as std::system gives it.
+inline int shell(const std::string& command) { return std::system(command.c_str()); }
+
+// Whether `program` is on PATH: tests that need make, xargs or groff skip without them.
+inline bool on_path(const std::string& program) {
+    return shell("command -v '" + program + "' >/dev/null 2>&1") == 0;
 }
 
 // A scratch directory of the test's own, emptied first.

@@ -14,8 +14,6 @@ using namespace rt_test;
 
 namespace {
 
-int shell(const std::string& command) { return std::system(command.c_str()); }
-
 // Runs make in the example's copy; returns its exit status.
 int make(const fs::path& dir, const std::string& arguments) {
     const int status = shell(join("cd '", dir.string(), "' && make ", arguments, " RT='", RT_BINARY,
@@ -35,7 +33,7 @@ bool out_of_date(const fs::path& dir) {
 }  // namespace
 
 TEST(the_animation_example_renders_and_rerenders_what_changed) {
-    if (shell("command -v make >/dev/null 2>&1") != 0) {
+    if (!on_path("make")) {
         std::cout << "make is not installed: not checked\n";
         return;
     }

@@ -40,10 +40,7 @@ constexpr const char* kKeep = "previous image, must survive";
 
 TEST(every_bad_input_gives_its_message_and_status_and_keeps_the_output) {
     const fs::path corpus = fs::path(RT_SOURCE_DIR) / "tests" / "bad";
-    std::vector<fs::path> cases;
-    for (const auto& entry : fs::directory_iterator(corpus))
-        if (entry.path().extension() == ".in") cases.push_back(entry.path());
-    std::sort(cases.begin(), cases.end());
+    const std::vector<fs::path> cases = files_with_extension(corpus, ".in");
     CHECK(cases.size() >= 30);
     for (const fs::path& input : cases) {
         const fs::path expect_path = fs::path(input).replace_extension(".expect");

@@ -15,8 +15,6 @@ using namespace rt_test;
 
 namespace {
 
-int shell(const std::string& command) { return std::system(command.c_str()); }
-
 const fs::path kFarm = fs::path(RT_SOURCE_DIR) / "docs" / "examples" / "farm";
 const std::string kScene = std::string(RT_SOURCE_DIR) + "/scenes/sphere-light.in";
 const std::string kEnvironment =
@@ -31,7 +29,7 @@ std::string whole_render(const fs::path& dir) {
 }  // namespace
 
 TEST(local_strips_merge_into_the_whole_render) {
-    if (shell("command -v xargs >/dev/null 2>&1") != 0) {
+    if (!on_path("xargs")) {
         std::cout << "xargs is not installed: not checked\n";
         return;
     }

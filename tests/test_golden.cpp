@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "check.h"
+#include "cli_util.h"
 #include "rt/image_compare.h"
 #include "rt/ppm.h"
 #include "rt/reader.h"
@@ -33,13 +34,7 @@ constexpr double kDifferingPixelFraction = 0.002;
 const fs::path kScenes = fs::path(RT_SOURCE_DIR) / "scenes";
 const fs::path kGolden = fs::path(RT_SOURCE_DIR) / "tests" / "golden";
 
-std::vector<fs::path> scene_files() {
-    std::vector<fs::path> files;
-    for (const auto& entry : fs::directory_iterator(kScenes))
-        if (entry.path().extension() == ".in") files.push_back(entry.path());
-    std::sort(files.begin(), files.end());
-    return files;
-}
+std::vector<fs::path> scene_files() { return rt_test::files_with_extension(kScenes, ".in"); }
 
 std::string render_to_ppm(const fs::path& scene_file) {
     const rt::Scene scene = rt::read_scene_file(scene_file.string());

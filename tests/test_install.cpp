@@ -12,12 +12,6 @@
 namespace fs = std::filesystem;
 using namespace rt_test;
 
-namespace {
-
-int shell(const std::string& command) { return std::system(command.c_str()); }
-
-}  // namespace
-
 TEST(cmake_install_puts_everything_in_place) {
     const fs::path prefix = work_dir("install") / "prefix";
     const fs::path log = prefix.parent_path() / "install.log";
@@ -80,7 +74,7 @@ TEST(rtimgs_man_page_describes_every_option_of_its_help) {
 }
 
 TEST(the_man_page_renders_without_warnings_where_groff_is_installed) {
-    if (shell("command -v groff >/dev/null 2>&1") != 0) {
+    if (!on_path("groff")) {
         std::cout << "groff is not installed: not checked\n";
         return;
     }

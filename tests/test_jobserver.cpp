@@ -239,7 +239,7 @@ TEST(depend_option_writes_a_rule_after_the_image) {
 // "INTERNAL: Exiting with N jobserver tokens" otherwise), and -M makes a changed texture
 // re-render only the frames that use it.
 TEST(a_real_make_with_its_jobserver) {
-    if (std::system("command -v make >/dev/null 2>&1") != 0) return;  // make is not installed
+    if (!on_path("make")) return;  // make is not installed
     const fs::path dir = work_dir("make");
     write_file(dir / "tex.ppm", "P3\n1 1\n255\n1 2 3\n");
     for (int i = 1; i <= 4; ++i) write_file(dir / join("f", i, ".in"), kScene);

@@ -19,11 +19,7 @@ using namespace rt_test;
 namespace {
 
 std::vector<fs::path> scene_files() {
-    std::vector<fs::path> files;
-    for (const auto& entry : fs::directory_iterator(fs::path(RT_SOURCE_DIR) / "scenes"))
-        if (entry.path().extension() == ".in") files.push_back(entry.path());
-    std::sort(files.begin(), files.end());
-    return files;
+    return files_with_extension(fs::path(RT_SOURCE_DIR) / "scenes", ".in");
 }
 
 // Whether `part` holds exactly the pixels of `whole` at `rect`.

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "check.h"
+#include "cli_util.h"
 #include "rt/lexer.h"
 #include "rt/ppm.h"
 #include "rt/reader.h"
@@ -81,10 +82,7 @@ TEST(every_numeric_scene_has_a_readable_twin) {
 }
 
 TEST(every_readable_scene_renders_as_its_numeric_twin) {
-    std::vector<fs::path> files;
-    for (const auto& entry : fs::directory_iterator(kScenes))
-        if (entry.path().extension() == ".rts") files.push_back(entry.path());
-    std::sort(files.begin(), files.end());
+    const std::vector<fs::path> files = rt_test::files_with_extension(kScenes, ".rts");
     CHECK(files.size() >= 30);
     for (const fs::path& rts : files) {
         fs::path in = rts;
