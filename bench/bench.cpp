@@ -20,7 +20,7 @@
 
 #include "rt/error.h"
 #include "rt/reader.h"
-#include "rt/statistics.h"
+#include "batch/statistics.h"
 #include "rt/trace.h"
 
 namespace {

@@ -17,18 +17,18 @@
 #include <system_error>
 #include <thread>
 
-#include "rt/cli.h"
-#include "rt/cost.h"
-#include "rt/depfile.h"
+#include "batch/cli.h"
+#include "batch/cost.h"
+#include "batch/depfile.h"
 #include "rt/error.h"
 #include "rt/image_io.h"
-#include "rt/interrupt.h"
-#include "rt/jobserver.h"
-#include "rt/message_text.h"
-#include "rt/output_file.h"
-#include "rt/progress.h"
+#include "common/interrupt.h"
+#include "batch/jobserver.h"
+#include "common/message_text.h"
+#include "common/output_file.h"
+#include "batch/progress.h"
 #include "rt/reader.h"
-#include "rt/statistics.h"
+#include "batch/statistics.h"
 #include "rt/trace.h"
 
 namespace {

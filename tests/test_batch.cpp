@@ -3,8 +3,8 @@
 
 #include "check.h"
 #include "cli_util.h"
-#include "rt/progress.h"
-#include "rt/statistics.h"
+#include "batch/progress.h"
+#include "batch/statistics.h"
 #include "rt/trace.h"
 #include "rt/viewer.h"
 #include "scene_util.h"

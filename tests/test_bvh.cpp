@@ -9,7 +9,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "rt/bvh.h"
+#include "accel/bvh.h"
+#include "accel/object_index.h"
 #include "rt/trace.h"
 #include "scene_util.h"
 
@@ -482,8 +483,8 @@ int disagreements(const Scene& scene, Random& random, int rays) {
 TEST(same_nearest_hit_and_shadows_as_the_linear_scan) {
     for (std::uint64_t seed = 1; seed <= 3; ++seed) {
         const Scene scene = parse_scene(SceneWriter(seed).scene(3000, 8));
-        CHECK(scene.index.bounded_count() > 2900);
-        CHECK(scene.index.unbounded_count() == 2);  // the floor and the affine plane
+        CHECK(scene.index->bounded_count() > 2900);
+        CHECK(scene.index->unbounded_count() == 2);  // the floor and the affine plane
         Random random(seed * 101);
         CHECK_EQ(disagreements(scene, random, 4000), 0);
     }

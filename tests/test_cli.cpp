@@ -4,7 +4,7 @@
 #include "cli_util.h"
 #include "error_cases.h"
 #include "process_util.h"
-#include "rt/cli.h"
+#include "batch/cli.h"
 
 using namespace rt_test;
 namespace fs = std::filesystem;

@@ -16,7 +16,7 @@
 #include "check.h"
 #include "cli_util.h"
 #include "rt/image_compare.h"
-#include "rt/ppm.h"
+#include "scene/texture.h"
 #include "rt/reader.h"
 #include "rt/trace.h"
 

@@ -11,7 +11,7 @@
 
 #include "check.h"
 #include "cli_util.h"
-#include "rt/cost.h"
+#include "batch/cost.h"
 #include "rt/reader.h"
 #include "scene_util.h"
 

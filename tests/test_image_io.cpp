@@ -6,10 +6,10 @@
 
 #include "check.h"
 #include "cli_util.h"
-#include "rt/deflate.h"
+#include "image/deflate.h"
 #include "rt/error.h"
 #include "rt/image_io.h"
-#include "rt/ppm.h"
+#include "scene/texture.h"
 
 using namespace rt_test;
 using namespace std::string_view_literals;

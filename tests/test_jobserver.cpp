@@ -7,10 +7,10 @@
 
 #include "check.h"
 #include "process_util.h"
-#include "rt/depfile.h"
+#include "batch/depfile.h"
 #include "rt/error.h"
-#include "rt/interrupt.h"
-#include "rt/jobserver.h"
+#include "common/interrupt.h"
+#include "batch/jobserver.h"
 
 using namespace rt_test;
 namespace fs = std::filesystem;

@@ -12,7 +12,7 @@
 
 #include "check.h"
 #include "process_util.h"
-#include "rt/output_file.h"
+#include "common/output_file.h"
 
 using namespace rt_test;
 namespace fs = std::filesystem;

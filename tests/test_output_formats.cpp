@@ -8,9 +8,9 @@
 
 #include "check.h"
 #include "cli_util.h"
-#include "rt/cli.h"
+#include "batch/cli.h"
 #include "rt/image_io.h"
-#include "rt/ppm.h"
+#include "scene/texture.h"
 
 using namespace rt_test;
 namespace fs = std::filesystem;

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "check.h"
-#include "rt/polynomial.h"
+#include "primitives/polynomial.h"
 
 using namespace rt;
 using namespace rt_test;

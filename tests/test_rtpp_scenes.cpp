@@ -13,8 +13,8 @@
 
 #include "check.h"
 #include "cli_util.h"
-#include "rt/lexer.h"
-#include "rt/ppm.h"
+#include "scene/lexer.h"
+#include "scene/texture.h"
 #include "rt/reader.h"
 #include "rt/trace.h"
 #include "rtpp/compiler.h"

@@ -7,7 +7,7 @@
 #include <limits>
 #include <string>
 
-#include "rt/ppm.h"
+#include "scene/texture.h"
 #include "rt/trace.h"
 #include "scene_util.h"
 

@@ -10,9 +10,9 @@
 #include <string_view>
 #include <vector>
 
-#include "rt/lexer.h"
+#include "scene/lexer.h"
 #include "rt/light.h"
-#include "rt/ppm.h"
+#include "scene/texture.h"
 #include "rt/primitive.h"
 #include "rt/scene.h"
 #include "rt/surface.h"

@@ -1,15 +1,25 @@
 // A scene as the reader returns it: a value with no ties to global state.
 #pragma once
 
+#include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "rt/light.h"
-#include "rt/object_index.h"
 #include "rt/primitive.h"
 #include "rt/surface.h"
 #include "rt/viewer.h"
 
 namespace rt {
+
+// The hierarchy over a scene's objects (src/accel/object_index.h): the renderer's own business.
+class ObjectIndex;
+
+// The object that last blocked a shadow ray toward one light, as the hierarchy names it.
+// Neighbouring points are mostly shadowed by the same object, so it is tried first.
+struct LastBlocker {
+    std::uint32_t entry = 0xffffffff;  // none yet
+};
 
 // A primitive placed in the scene with its surface.
 struct Object {
@@ -27,7 +37,8 @@ struct Scene {
     std::vector<Object> objects;
     std::vector<Light> lights;
     Spectrum ambient{0.0};  // the sum of the ambient lights (ID 103)
-    ObjectIndex index;      // the hierarchy over `objects`, once build_index() has run
+    // The hierarchy over `objects`, once build_index() has run; shared by copies of the scene.
+    std::shared_ptr<const ObjectIndex> index;
     // Zero-area triangles that meshes left out (they are accepted, not errors).
     std::size_t skipped_triangles = 0;
     // Whether some surface can send both a mirror ray and a refracted ray from one hit (glass,
@@ -36,7 +47,7 @@ struct Scene {
 
     // Builds the hierarchy over the objects on up to `threads` threads (the same hierarchy
     // for any number); read_scene() and read_scene_file() call it.
-    void build_index(int threads = 1) { index = ObjectIndex(objects, threads); }
+    void build_index(int threads = 1);
 };
 
 }  // namespace rt

@@ -86,7 +86,7 @@ class Tracer {
     const RenderStats& stats() const { return stats_; }
 
   private:
-    bool blocked(const Ray& ray, double distance, ObjectIndex::Blocker* last) const;
+    bool blocked(const Ray& ray, double distance, LastBlocker* last) const;
     Spectrum direct_light(const Vec3& point, const Vec3& facing_normal, const Vec3& reflected,
                           const Material& m, double ks) const;
     bool may_trace(int depth, double weight) const {
@@ -94,11 +94,12 @@ class Tracer {
     }
 
     const Scene& scene_;
+    const ObjectIndex* index_;  // the scene's hierarchy, when options_.accelerate
     RenderOptions options_;  // a copy: small, and safe when built from a temporary
     // Counting is not part of what a trace computes, so the const methods may count.
     mutable RenderStats stats_;
     // Per light, the object that last blocked a shadow ray toward it.
-    mutable std::vector<ObjectIndex::Blocker> last_blockers_;
+    mutable std::vector<LastBlocker> last_blockers_;
 };
 
 // The number of threads a render uses for RenderOptions::threads (0: one per hardware thread).

@@ -6,7 +6,7 @@
 // primitive's index), partitioned in place, so every pass reads memory in order. One pass per
 // node bins the primitives; the bins already hold the children's boxes, so the partition that
 // follows is the only other pass.
-#include "rt/bvh.h"
+#include "accel/bvh.h"
 
 #include <algorithm>
 #include <array>

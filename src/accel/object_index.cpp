@@ -1,4 +1,4 @@
-#include "rt/object_index.h"
+#include "accel/object_index.h"
 
 #include <cmath>
 #include <limits>
@@ -95,6 +95,10 @@ bool ObjectIndex::any(const Ray& ray, Interval range, Blocker* last, std::uint64
     for (auto i = static_cast<std::uint32_t>(bounded_count_); i < entries_.size(); ++i)
         if (blocks(i)) return true;
     return bvh_.any(ray, range.t_min, range.t_max, blocks);
+}
+
+void Scene::build_index(int threads) {
+    index = std::make_shared<const ObjectIndex>(objects, threads);
 }
 
 }  // namespace rt

@@ -1,7 +1,7 @@
 // How messages show text that came from outside: a scene's tokens, file names, command-line
 // values. Bytes that could drive a terminal are written as \xNN, so no input can move the
 // cursor, retitle the window or hide what rt says.
-#include "rt/message_text.h"
+#include "common/message_text.h"
 
 #include <cstdint>
 

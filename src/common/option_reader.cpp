@@ -1,6 +1,6 @@
-#include "rt/option_reader.h"
+#include "common/option_reader.h"
 
-#include "rt/message_text.h"
+#include "common/message_text.h"
 
 namespace rt {
 

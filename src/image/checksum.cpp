@@ -1,7 +1,7 @@
 // CRC-32 and Adler-32, the checksums of PNG chunks and of zlib streams.
 #include <array>
 
-#include "rt/deflate.h"
+#include "image/deflate.h"
 
 namespace rt {
 

@@ -1,6 +1,6 @@
 // The deflate encoder: LZ77 with hash chains and lazy matching as zlib does it at level 6,
 // then per block the cheapest of dynamic Huffman codes, the fixed codes and stored bytes.
-#include "rt/deflate.h"
+#include "image/deflate.h"
 
 #include <algorithm>
 #include <array>

@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "deflate_tables.h"
-#include "rt/deflate.h"
+#include "image/deflate.h"
 #include "rt/error.h"
 
 namespace rt {

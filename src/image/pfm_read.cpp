@@ -5,7 +5,7 @@
 
 #include "rt/error.h"
 #include "rt/image_file.h"
-#include "rt/ppm.h"
+#include "scene/texture.h"
 
 namespace rt {
 

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "png_format.h"
-#include "rt/deflate.h"
+#include "image/deflate.h"
 #include "rt/error.h"
 #include "rt/image_io.h"
 

@@ -3,10 +3,10 @@
 #include <vector>
 
 #include "png_format.h"
-#include "rt/deflate.h"
+#include "image/deflate.h"
 #include "rt/error.h"
 #include "rt/image_io.h"
-#include "rt/ppm.h"
+#include "scene/texture.h"
 
 namespace rt {
 

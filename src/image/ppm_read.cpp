@@ -4,7 +4,7 @@
 
 #include "rt/error.h"
 #include "rt/image_file.h"
-#include "rt/ppm.h"
+#include "scene/texture.h"
 
 namespace rt {
 

@@ -5,7 +5,7 @@
 // original warns, a 1/r^2 light only behaves under frames that scale all distances alike.
 #include <cmath>
 
-#include "affine_frame.h"
+#include "scene/affine_frame.h"
 #include "lights/lights.h"
 #include "rt/ray.h"
 #include "rt/reader.h"

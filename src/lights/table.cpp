@@ -1,6 +1,6 @@
 // The table of light types that have a position. The ambient light (103) is not sampled; the
 // reader adds it to the scene's ambient intensity.
-#include "id_table.h"
+#include "scene/id_table.h"
 #include "lights/lights.h"
 
 namespace rt {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <optional>
 
-#include "affine_frame.h"
+#include "scene/affine_frame.h"
 #include "primitives/primitives.h"
 #include "rt/reader.h"
 

@@ -17,7 +17,7 @@
 
 #include "primitives/primitives.h"
 #include "primitives/watertight.h"
-#include "rt/bvh.h"
+#include "accel/bvh.h"
 #include "rt/reader.h"
 
 namespace rt::mesh {

@@ -2,7 +2,7 @@
 // primitives.h and one row here. Columns left out of a row are nullptr (see primitive.h).
 #include <cmath>
 
-#include "id_table.h"
+#include "scene/id_table.h"
 #include "primitives/primitives.h"
 
 namespace rt {

@@ -11,7 +11,7 @@
 
 #include "primitives/planar.h"
 #include "primitives/primitives.h"
-#include "rt/polynomial.h"
+#include "primitives/polynomial.h"
 #include "rt/reader.h"
 
 namespace rt::torus {

@@ -5,8 +5,8 @@
 
 #include "rt/error.h"
 #include "rt/image_file.h"
-#include "rt/message_text.h"
-#include "rt/output_file.h"
+#include "common/message_text.h"
+#include "common/output_file.h"
 #include "rtimg.h"
 
 namespace rtimg {

@@ -1,7 +1,7 @@
 // rtimg convert IN OUT: another format, bit depth or gamma; the metadata comes along.
 #include "rt/image_file.h"
-#include "rt/message_text.h"
-#include "rt/output_file.h"
+#include "common/message_text.h"
+#include "common/output_file.h"
 #include "rtimg.h"
 
 namespace rtimg {

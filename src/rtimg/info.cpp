@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "rt/image_merge.h"
-#include "rt/message_text.h"
+#include "common/message_text.h"
 #include "rtimg.h"
 
 namespace rtimg {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "rt/error.h"
-#include "rt/message_text.h"
+#include "common/message_text.h"
 #include "rtimg.h"
 
 int main(int argc, char** argv) {

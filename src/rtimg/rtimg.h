@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "rt/image_io.h"
-#include "rt/option_reader.h"
+#include "common/option_reader.h"
 
 namespace rtimg {
 

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <iostream>
 
-#include "rt/message_text.h"
+#include "common/message_text.h"
 #include "rtpp/source.h"
 
 namespace rtpp {

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "rt/option_reader.h"
+#include "common/option_reader.h"
 
 namespace rtpp {
 

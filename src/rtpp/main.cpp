@@ -3,7 +3,7 @@
 #include <iostream>
 #include <new>
 
-#include "rt/message_text.h"
+#include "common/message_text.h"
 #include "rtpp/command_line.h"
 #include "rtpp/compiler.h"
 #include "rtpp/source.h"

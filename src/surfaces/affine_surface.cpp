@@ -1,7 +1,7 @@
 // Affine surface (ID 111): O; X; Y; Z; then a surface, evaluated at the world point taken into
 // the local frame (section 2.7 of the original: "similar primitives are provided for the
 // affine distortion of surfaces"). A checker in a stretched frame gives stretched cells.
-#include "affine_frame.h"
+#include "scene/affine_frame.h"
 #include "rt/reader.h"
 #include "surfaces/surfaces.h"
 

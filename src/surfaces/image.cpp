@@ -4,7 +4,7 @@
 // takes the nearest pixel: the pixel whose square holds (u, v), no filtering.
 #include <cmath>
 
-#include "rt/ppm.h"
+#include "scene/texture.h"
 #include "rt/reader.h"
 #include "surfaces/surfaces.h"
 

@@ -1,6 +1,6 @@
 // The table of surface types (the IDs allowed in a primitive's surface slot, except 106,
 // which the reader resolves to the current default).
-#include "id_table.h"
+#include "scene/id_table.h"
 #include "surfaces/surfaces.h"
 
 namespace rt {

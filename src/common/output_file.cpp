@@ -1,4 +1,4 @@
-#include "rt/output_file.h"
+#include "common/output_file.h"
 
 #include <fcntl.h>
 #include <limits.h>
@@ -9,11 +9,9 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <sstream>
 
 #include "rt/error.h"
-#include "rt/interrupt.h"
-#include "rt/ppm.h"
+#include "common/interrupt.h"
 
 namespace rt {
 
@@ -231,12 +229,6 @@ OutputFile::~OutputFile() {
         ::unlink(temporary_.c_str());
         interrupt::forget_temporary(cleanup_slot_);
     }
-}
-
-void OutputFile::write(const Raster& raster) {
-    std::ostringstream ppm;
-    write_ppm(ppm, raster);
-    write_bytes(ppm.view());
 }
 
 void OutputFile::write_bytes(std::string_view bytes) {

@@ -1,4 +1,4 @@
-#include "rt/fd_stream.h"
+#include "common/fd_stream.h"
 
 #include <unistd.h>
 

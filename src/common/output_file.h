@@ -8,8 +8,6 @@
 #include <string_view>
 #include <vector>
 
-#include "rt/raster.h"
-
 namespace rt {
 
 // Every check that can fail happens in the constructor, before rendering (docs/cli.md, FILES
@@ -32,9 +30,8 @@ class OutputFile {
     OutputFile(const OutputFile&) = delete;
     OutputFile& operator=(const OutputFile&) = delete;
 
-    // Each writes the whole file (a binary PPM; the given bytes) and commits it: renames the
-    // temporary file over the target, or finishes writing in place. Call one of them once.
-    void write(const Raster& raster);
+    // Writes the whole file and commits it: renames the temporary file over the target, or
+    // finishes writing in place. Call it once.
     void write_bytes(std::string_view bytes);
 
   private:

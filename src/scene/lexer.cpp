@@ -2,7 +2,7 @@
 // straight from the operating system) and scans each chunk with plain loops. It keeps one
 // token and reuses its string, so once that has grown, reading allocates nothing. Places are
 // counted in bytes, as before: a line's first byte is column 1.
-#include "rt/lexer.h"
+#include "scene/lexer.h"
 
 #include <algorithm>
 #include <cstring>

@@ -1,4 +1,4 @@
-#include "rt/jobserver.h"
+#include "batch/jobserver.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -9,7 +9,7 @@
 #include <cstring>
 #include <vector>
 
-#include "rt/interrupt.h"
+#include "common/interrupt.h"
 
 namespace rt {
 

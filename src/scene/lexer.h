@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "rt/message_text.h"  // how messages show a token
+#include "common/message_text.h"  // how messages show a token
 
 namespace rt {
 

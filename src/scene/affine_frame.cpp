@@ -1,4 +1,4 @@
-#include "affine_frame.h"
+#include "scene/affine_frame.h"
 
 #include <cmath>
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "rt/image_io.h"
-#include "rt/option_reader.h"
+#include "common/option_reader.h"
 #include "rt/options.h"
 
 namespace rt {

@@ -1,4 +1,4 @@
-#include "rt/depfile.h"
+#include "batch/depfile.h"
 
 #include "rt/error.h"
 

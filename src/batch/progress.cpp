@@ -1,4 +1,4 @@
-#include "rt/progress.h"
+#include "batch/progress.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "rt/interrupt.h"
+#include "common/interrupt.h"
 
 #include <fcntl.h>
 #include <limits.h>

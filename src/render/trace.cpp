@@ -1,5 +1,7 @@
 #include "rt/trace.h"
 
+#include "accel/object_index.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -77,8 +79,9 @@ Spectrum transmittance(const Spectrum& absorption, double t) {
 }  // namespace
 
 Tracer::Tracer(const Scene& scene, const RenderOptions& options)
-    : scene_(scene), options_(options), last_blockers_(scene.lights.size()) {
-    if (options_.accelerate && !scene_.index.covers(scene_.objects.size()))
+    : scene_(scene), index_(scene.index.get()), options_(options),
+      last_blockers_(scene.lights.size()) {
+    if (options_.accelerate && (index_ == nullptr || !index_->covers(scene_.objects.size())))
         throw std::logic_error("Tracer: the scene's index was not built (Scene::build_index)");
 }
 
@@ -86,7 +89,7 @@ std::optional<SceneHit> Tracer::closest_hit(const Ray& ray) const {
     Interval range{hit_tolerance(ray.origin), kInfinity};
     if (options_.accelerate) {
         ObjectIndex::Found found;
-        if (!scene_.index.closest(ray, range, found, &stats_.object_tests)) return std::nullopt;
+        if (!index_->closest(ray, range, found, &stats_.object_tests)) return std::nullopt;
         return SceneHit{&scene_.objects[found.object], found.hit};
     }
     // The linear scan: every object in file order.
@@ -106,10 +109,10 @@ bool Tracer::blocked(const Ray& ray, double distance) const {
     return blocked(ray, distance, nullptr);
 }
 
-bool Tracer::blocked(const Ray& ray, double distance, ObjectIndex::Blocker* last) const {
+bool Tracer::blocked(const Ray& ray, double distance, LastBlocker* last) const {
     ++stats_.shadow_rays;
     const Interval range{hit_tolerance(ray.origin), distance};
-    if (options_.accelerate) return scene_.index.any(ray, range, last, &stats_.object_tests);
+    if (options_.accelerate) return index_->any(ray, range, last, &stats_.object_tests);
     return std::any_of(scene_.objects.begin(), scene_.objects.end(), [&](const Object& o) {
         ++stats_.object_tests;
         return o.shape.intersect_any(ray, range);

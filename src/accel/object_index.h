@@ -6,12 +6,11 @@
 #include <span>
 #include <vector>
 
-#include "rt/bvh.h"
+#include "accel/bvh.h"
 #include "rt/primitive.h"
+#include "rt/scene.h"
 
 namespace rt {
-
-struct Object;
 
 class ObjectIndex {
   public:
@@ -21,11 +20,7 @@ class ObjectIndex {
         Hit hit;
     };
 
-    // The object that last blocked a shadow ray toward one light. Neighbouring points are
-    // mostly shadowed by the same object, so any() tries it first.
-    struct Blocker {
-        std::uint32_t entry = kNone;
-    };
+    using Blocker = LastBlocker;
 
     ObjectIndex() = default;
     // Objects with finite bounds go into the hierarchy; the rest (planes, and affines of
@@ -50,7 +45,7 @@ class ObjectIndex {
 
   private:
     // No entry, and no object: the largest 32-bit number, which indexes neither.
-    static constexpr std::uint32_t kNone = 0xffffffff;
+    static constexpr std::uint32_t kNone = LastBlocker{}.entry;
 
     // What a test needs, stored contiguously in the order the leaves visit them.
     struct Entry {

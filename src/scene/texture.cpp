@@ -1,4 +1,4 @@
-#include "rt/ppm.h"
+#include "scene/texture.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -11,7 +11,7 @@
 #include <istream>
 
 #include "rt/error.h"
-#include "rt/fd_stream.h"
+#include "common/fd_stream.h"
 #include "rt/image_io.h"
 
 namespace rt {

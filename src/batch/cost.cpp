@@ -1,4 +1,4 @@
-#include "rt/cost.h"
+#include "batch/cost.h"
 
 #include <cstdio>
 

@@ -6,7 +6,7 @@
 // closed form and divides it out; the quartic factors into two quadratics (Ferrari, through
 // the resolvent cubic) and refines the factors by Newton's method on their coefficients,
 // which keeps small roots accurate when others are many orders of magnitude larger.
-#include "rt/polynomial.h"
+#include "primitives/polynomial.h"
 
 #include <algorithm>
 #include <cmath>

@@ -15,9 +15,9 @@
 #include <limits>
 
 #include "rt/error.h"
-#include "rt/fd_stream.h"
-#include "rt/ppm.h"
-#include "rt/statistics.h"
+#include "common/fd_stream.h"
+#include "scene/texture.h"
+#include "batch/statistics.h"
 
 namespace rt {
 

@@ -1,4 +1,4 @@
-#include "rt/cli.h"
+#include "batch/cli.h"
 
 #include <charconv>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <optional>
 #include <string_view>
 
-#include "rt/message_text.h"  // values echoed in messages are escaped as tokens are
+#include "common/message_text.h"  // values echoed in messages are escaped as tokens are
 #include "rt/reader.h"        // the resolution limits
 
 namespace rt {

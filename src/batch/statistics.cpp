@@ -1,4 +1,4 @@
-#include "rt/statistics.h"
+#include "batch/statistics.h"
 
 #include <sys/resource.h>
 
