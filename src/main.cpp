@@ -20,27 +20,19 @@
 #include "batch/cli.h"
 #include "batch/cost.h"
 #include "batch/depfile.h"
-#include "rt/error.h"
-#include "rt/image_io.h"
-#include "common/interrupt.h"
 #include "batch/jobserver.h"
+#include "batch/progress.h"
+#include "batch/statistics.h"
+#include "common/exit_status.h"
+#include "common/interrupt.h"
 #include "common/message_text.h"
 #include "common/output_file.h"
-#include "batch/progress.h"
+#include "rt/error.h"
+#include "rt/image_io.h"
 #include "rt/reader.h"
-#include "batch/statistics.h"
 #include "rt/trace.h"
 
 namespace {
-
-constexpr int kExitOk = 0;
-constexpr int kExitError = 1;  // a scene, texture or input/output error
-constexpr int kExitUsage = 2;  // the command line made no sense
-
-// A command line that makes sense only once the scene is read (--region outside the image).
-struct LateUsageError {
-    std::string message;
-};
 
 using Clock = std::chrono::steady_clock;
 
@@ -64,19 +56,6 @@ void apply_size(rt::Viewer& viewer, const rt::ImageSize& size, bool quiet) {
                   << rt::format_number(length(viewer.x) / length(viewer.y))
                   << " : 1); for square pixels use --size " << size.width << "x" << *square
                   << ", or change the viewer's vectors\n";
-}
-
-// Text for standard output (--help, --version, -r): a full disk or a closed pipe is an error,
-// not a silent success.
-int print(std::string_view text) {
-    errno = 0;
-    std::cout << text;
-    std::cout.flush();
-    if (std::cout && std::fflush(stdout) == 0 && !std::ferror(stdout)) return kExitOk;
-    const int error = errno;
-    std::cerr << "rt: cannot write to standard output" << (error != 0 ? ": " : "")
-              << (error != 0 ? std::strerror(error) : "") << "\n";
-    return kExitError;
 }
 
 // The thread count: -j N when given; else, under make's jobserver, one plus the tokens free
@@ -104,7 +83,7 @@ int run(const rt::CommandLine& cl, int threads) {
     if (cl.size) apply_size(scene.viewer, *cl.size, cl.quiet);
     const rt::PixelRect region = cl.region.value_or(rt::image_rect(scene.viewer));
     if (const auto problem = rt::region_problem(region, scene.viewer.xres, scene.viewer.yres))
-        throw LateUsageError{*problem};
+        throw rt::UsageError{*problem};  // known only now
     if (cl.read_only) {
         std::ostringstream summary;
         const std::string name =
@@ -115,7 +94,7 @@ int run(const rt::CommandLine& cl, int threads) {
             summary << ", " << n << " zero-area " << (n == 1 ? "triangle" : "triangles")
                     << " skipped";
         summary << "\n";
-        return print(summary.view());
+        return rt::print_to_stdout("rt", summary.view());
     }
     if (!cl.quiet)
         for (const std::string& warning : rt::cost_warnings(scene, cl.render))
@@ -169,53 +148,36 @@ int run(const rt::CommandLine& cl, int threads) {
         statistics.peak_memory_bytes = rt::peak_memory_bytes();
         std::cerr << rt::format_statistics(statistics);
     }
-    return kExitOk;
+    return rt::kExitOk;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    rt::CommandLine cl;
-    try {
-        cl = rt::parse_command_line({argv + 1, argv + argc});
-    } catch (const rt::UsageError& e) {
-        std::cerr << "rt: " << rt::printable_message(e.message)
-                  << "\nTry 'rt --help' for more information.\n";
-        return kExitUsage;
-    }
-    if (cl.help) return print(rt::usage_text());
-    if (cl.version) return print("rt " RT_VERSION "\n");
-    // The jobserver is read before rt opens any file (see JobserverClient).
-    const char* makeflags = std::getenv("MAKEFLAGS");
-    const rt::JobserverAuth auth = rt::parse_makeflags(makeflags != nullptr ? makeflags : "");
-    if (auth.dry_run) return kExitOk;  // make -n, -q and -t run '+' lines too
-    rt::interrupt::install_handlers();
-    // Declared before anything that can fail, so its tokens go back on every exit path.
+    // Declared before anything that can fail, so its tokens go back on every exit path (after
+    // the message saying why).
     std::optional<rt::JobserverClient> jobs;
-    try {
+    return rt::run_guarded({"rt"}, [&] {
+        const rt::CommandLine cl = rt::parse_command_line({argv + 1, argv + argc});
+        if (cl.help) return rt::print_to_stdout("rt", rt::usage_text());
+        if (cl.version) return rt::print_to_stdout("rt", "rt " RT_VERSION "\n");
+        // The jobserver is read before rt opens any file (see JobserverClient).
+        const char* makeflags = std::getenv("MAKEFLAGS");
+        const rt::JobserverAuth auth = rt::parse_makeflags(makeflags != nullptr ? makeflags : "");
+        if (auth.dry_run) return rt::kExitOk;  // make -n, -q and -t run '+' lines too
+        rt::interrupt::install_handlers();
         const int threads = choose_threads(cl, auth, jobs);
         if (const char* debug = std::getenv("RT_DEBUG");
             debug != nullptr && std::strstr(debug, "threads") != nullptr)
             std::cerr << "rt: " << threads << (threads == 1 ? " thread" : " threads") << ", "
                       << rt::interrupt::tokens_held() << " jobserver tokens\n";
-        return run(cl, threads);
-    } catch (const LateUsageError& e) {
-        std::cerr << "rt: " << rt::printable_message(e.message)
-                  << "\nTry 'rt --help' for more information.\n";
-        return kExitUsage;
-    } catch (const rt::Error& e) {
-        std::cerr << rt::printable_message(e.what()) << "\n";
-    } catch (const std::bad_alloc&) {
-        std::cerr << "rt: out of memory\n";
-    } catch (const std::system_error& e) {
-        // std::thread's way to say the system would not start another thread.
-        if (e.code() == std::errc::resource_unavailable_try_again)
-            std::cerr << "rt: cannot start another thread (" << rt::printable_message(e.what())
-                      << "): try a smaller -j\n";
-        else
-            std::cerr << "rt: " << rt::printable_message(e.what()) << "\n";
-    } catch (const std::exception& e) {
-        std::cerr << "rt: " << rt::printable_message(e.what()) << "\n";
-    }
-    return kExitError;
+        try {
+            return run(cl, threads);
+        } catch (const std::system_error& e) {
+            // std::thread's way to say the system would not start another thread.
+            if (e.code() != std::errc::resource_unavailable_try_again) throw;
+            throw rt::Error("rt: cannot start another thread (" + std::string(e.what()) +
+                            "): try a smaller -j");
+        }
+    });
 }

@@ -1,10 +1,10 @@
 // The command line as users call it: options, exit statuses, stdin and stdout, and that a
 // failed run never touches an existing output file.
+#include "batch/cli.h"
 #include "check.h"
 #include "cli_util.h"
 #include "error_cases.h"
 #include "process_util.h"
-#include "batch/cli.h"
 
 using namespace rt_test;
 namespace fs = std::filesystem;
@@ -238,7 +238,8 @@ TEST(conventions) {
                    "rt: -d 99999999999999999999 is out of range (0 to 64)");
     CHECK_CONTAINS(run_rt(dir, "-w 1e-400").err,
                    "rt: -w 1e-400 is too small to tell from 0 (below about 4.9e-324); write 0");
-    CHECK_CONTAINS(run_rt(dir, "-w 1e400").err, "rt: -w 1e400 is out of range (above about 1.8e308)");
+    CHECK_CONTAINS(run_rt(dir, "-w 1e400").err,
+                   "rt: -w 1e400 is out of range (above about 1.8e308)");
     CHECK_CONTAINS(run_rt(dir, "-d +x").err, "-d expects a whole number, got '+x'");
     CHECK_CONTAINS(run_rt(dir, "-d ++5").err, "-d expects a whole number, got '++5'");
 }
@@ -259,4 +260,16 @@ TEST(text_that_cannot_be_written_is_an_error) {
     CHECK_EQ(r.status, 1);
     CHECK_CONTAINS(r.err, "<stdout>: cannot write the image: No space left on device");
     ::close(full);
+    // rtpp and rtimg check their text the same way (common/exit_status.h).
+    for (const std::string program : {RTPP_BINARY, RTIMG_BINARY}) {
+        const std::string name = fs::path(program).filename().string();
+        for (const char* option : {"--help", "--version"}) {
+            CHECK_EQ(shell("cd '" + dir.string() + "' && '" + program + "' " + option +
+                           " >/dev/full 2>text.err; echo $? >text.status"),
+                     0);
+            CHECK_EQ(read_file(dir / "text.status"), std::string("1\n"));
+            CHECK_EQ(read_file(dir / "text.err"),
+                     name + ": cannot write to standard output: No space left on device\n");
+        }
+    }
 }

@@ -7,14 +7,16 @@
 #include <string>
 #include <vector>
 
-#include "rt/image_io.h"
+#include "common/exit_status.h"
 #include "common/option_reader.h"
+#include "rt/image_io.h"
 
 namespace rtimg {
 
-inline constexpr int kExitOk = 0;
-inline constexpr int kExitFail = 1;   // diff: the images differ too much; others: an error
-inline constexpr int kExitUsage = 2;  // the command line made no sense (diff: any error)
+using rt::kExitOk;
+using rt::kExitUsage;  // the command line made no sense (diff: any error)
+// diff: the images differ too much; the other commands: an error.
+inline constexpr int kExitFail = rt::kExitError;
 
 using rt::UsageError;
 

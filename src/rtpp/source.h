@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "rt/error.h"
+
 namespace rtpp {
 
 struct SourcePos {
@@ -41,10 +43,11 @@ class SourceFiles {
     std::vector<SourceFile> files_;
 };
 
-// A user-facing error: what() is complete, place and include chain included.
-class CompileError : public std::runtime_error {
+// A user-facing error: what() is complete, place and include chain included. An rt::Error,
+// so that main() prints it as it prints OutputFile's.
+class CompileError : public rt::Error {
   public:
-    using std::runtime_error::runtime_error;
+    using rt::Error::Error;
 };
 
 // Thrown below the compiler, which adds the place (the source files are its to describe).
