@@ -1,157 +1,13 @@
 // rt: reads a scene, traces it and writes a PPM, PNG or PFM image (section 1.10.3 of the
-// original).
-#include <unistd.h>
-
-#include <algorithm>
-#include <cerrno>
-#include <chrono>
-#include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <cstring>
-#include <exception>
-#include <iostream>
-#include <new>
+// original). main() parses the command line and hands over to rt's job (batch/job.h);
+// run_guarded turns whatever goes wrong into a message and an exit status.
 #include <optional>
-#include <sstream>
-#include <system_error>
-#include <thread>
 
 #include "batch/cli.h"
-#include "batch/cost.h"
-#include "batch/depfile.h"
+#include "batch/job.h"
 #include "batch/jobserver.h"
-#include "batch/progress.h"
-#include "batch/statistics.h"
 #include "common/exit_status.h"
 #include "common/interrupt.h"
-#include "common/message_text.h"
-#include "common/output_file.h"
-#include "rt/error.h"
-#include "rt/image_io.h"
-#include "rt/reader.h"
-#include "rt/trace.h"
-
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// --size: the viewer's vectors stay, so the field of view does; say when pixels stop being
-// square, and which size would keep them so.
-void apply_size(rt::Viewer& viewer, const rt::ImageSize& size, bool quiet) {
-    // A size in the scene's own proportions keeps its pixels' shape, square or not.
-    const bool same_shape =
-        std::lround(static_cast<double>(size.width) * viewer.yres / viewer.xres) == size.height ||
-        std::lround(static_cast<double>(size.height) * viewer.xres / viewer.yres) == size.width;
-    viewer.xres = size.width;
-    viewer.yres = size.height;
-    if (quiet || same_shape) return;
-    if (const auto square = rt::square_pixel_height(viewer))
-        std::cerr << "rt: warning: --size " << size.width << "x" << size.height
-                  << " gives non-square pixels (the viewer's x and y vectors are "
-                  << rt::format_number(length(viewer.x) / length(viewer.y))
-                  << " : 1); for square pixels use --size " << size.width << "x" << *square
-                  << ", or change the viewer's vectors\n";
-}
-
-// The thread count: -j N when given; else, under make's jobserver, one plus the tokens free
-// now (no more than the hardware has); else one per hardware thread.
-int choose_threads(const rt::CommandLine& cl, const rt::JobserverAuth& auth,
-                   std::optional<rt::JobserverClient>& jobs) {
-    if (cl.render.threads > 0) return cl.render.threads;
-    const int hardware = rt::worker_threads(0);
-    if (auth.kind == rt::JobserverAuth::Kind::none) return hardware;
-    if (auth.kind == rt::JobserverAuth::Kind::disabled) return 1;
-    jobs.emplace(auth);
-    if (!jobs->usable()) {
-        std::cerr << "rt: warning: " << rt::printable_message(jobs->problem())
-                  << "; rendering on 1 thread (-j N sets "
-                  << "the number)\n";
-        return 1;
-    }
-    return 1 + jobs->acquire(hardware - 1);
-}
-
-int run(const rt::CommandLine& cl, int threads) {
-    rt::RunStatistics statistics;
-    std::vector<std::filesystem::path> textures;
-    rt::Scene scene = rt::read_scene_file(cl.input, threads, &statistics.times, &textures);
-    if (cl.size) apply_size(scene.viewer, *cl.size, cl.quiet);
-    const rt::PixelRect region = cl.region.value_or(rt::image_rect(scene.viewer));
-    if (const auto problem = rt::region_problem(region, scene.viewer.xres, scene.viewer.yres))
-        throw rt::UsageError{*problem};  // known only now
-    if (cl.read_only) {
-        std::ostringstream summary;
-        const std::string name =
-            cl.input == "-" ? "<stdin>" : rt::show_token(cl.input, rt::kShowWhole);
-        summary << name << ": " << scene.objects.size() << " objects, " << scene.lights.size()
-                << " lights, " << scene.viewer.xres << "x" << scene.viewer.yres;
-        if (const std::size_t n = scene.skipped_triangles; n != 0)
-            summary << ", " << n << " zero-area " << (n == 1 ? "triangle" : "triangles")
-                    << " skipped";
-        summary << "\n";
-        return rt::print_to_stdout("rt", summary.view());
-    }
-    if (!cl.quiet)
-        for (const std::string& warning : rt::cost_warnings(scene, cl.render))
-            std::cerr << "rt: warning: " << rt::printable_message(warning) << "\n";
-    // The output files are checked and claimed before rendering, so a bad path fails fast,
-    // and are only replaced once complete. The files the render reads are never written over.
-    rt::ImageEncoding encoding = cl.image;
-    encoding.metadata = rt::image_metadata(cl);
-    if (cl.region)
-        rt::add_region_metadata(encoding.metadata, region, scene.viewer.xres, scene.viewer.yres);
-    std::vector<std::filesystem::path> inputs = textures;
-    inputs.insert(inputs.begin(), cl.input == "-" ? std::string() : cl.input);  // scene first
-    rt::OutputFile output(cl.output, inputs);
-    std::optional<rt::OutputFile> depfile;
-    std::string rule;
-    if (!cl.depfile.empty()) {
-        std::vector<std::string> dependencies;
-        if (cl.input != "-") dependencies.push_back(cl.input);
-        for (const auto& texture : textures) dependencies.push_back(texture.string());
-        rule = rt::make_rule(cl.output, dependencies);
-        std::error_code ec;
-        if (std::filesystem::weakly_canonical(cl.depfile, ec) ==
-            std::filesystem::weakly_canonical(cl.output, ec))
-            throw rt::Error(cl.depfile + ": -M and -o name the same file");
-        depfile.emplace(cl.depfile, inputs, "the dependency rule");
-    }
-    rt::RenderOptions options = cl.render;
-    options.threads = threads;
-
-    rt::RenderProgress progress;
-    std::optional<rt::ProgressDisplay> display;
-    if (!cl.quiet && (cl.progress || isatty(STDERR_FILENO) != 0))
-        display.emplace(progress,
-                        isatty(STDERR_FILENO) != 0 ? rt::ProgressDisplay::Style::terminal
-                                                   : rt::ProgressDisplay::Style::lines,
-                        std::cerr);
-    auto start = Clock::now();
-    const rt::Raster image = rt::render_region(scene, options, region, &statistics.rays, &progress);
-    statistics.times.render = seconds_since(start);
-    if (display) display->finish();
-
-    start = Clock::now();
-    output.write_bytes(rt::encode_image(image, encoding));
-    statistics.times.write = seconds_since(start);
-    // Written only once the image is: a rule for an image that failed would be a lie.
-    if (depfile) depfile->write_bytes(rule);
-    if (cl.stats) {
-        statistics.threads = rt::render_threads(options, region);
-        statistics.objects = scene.objects.size();
-        statistics.lights = scene.lights.size();
-        statistics.peak_memory_bytes = rt::peak_memory_bytes();
-        std::cerr << rt::format_statistics(statistics);
-    }
-    return rt::kExitOk;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
     // Declared before anything that can fail, so its tokens go back on every exit path (after
@@ -162,22 +18,9 @@ int main(int argc, char** argv) {
         if (cl.help) return rt::print_to_stdout("rt", rt::usage_text());
         if (cl.version) return rt::print_to_stdout("rt", "rt " RT_VERSION "\n");
         // The jobserver is read before rt opens any file (see JobserverClient).
-        const char* makeflags = std::getenv("MAKEFLAGS");
-        const rt::JobserverAuth auth = rt::parse_makeflags(makeflags != nullptr ? makeflags : "");
+        const rt::JobserverAuth auth = rt::jobserver_from_environment();
         if (auth.dry_run) return rt::kExitOk;  // make -n, -q and -t run '+' lines too
         rt::interrupt::install_handlers();
-        const int threads = choose_threads(cl, auth, jobs);
-        if (const char* debug = std::getenv("RT_DEBUG");
-            debug != nullptr && std::strstr(debug, "threads") != nullptr)
-            std::cerr << "rt: " << threads << (threads == 1 ? " thread" : " threads") << ", "
-                      << rt::interrupt::tokens_held() << " jobserver tokens\n";
-        try {
-            return run(cl, threads);
-        } catch (const std::system_error& e) {
-            // std::thread's way to say the system would not start another thread.
-            if (e.code() != std::errc::resource_unavailable_try_again) throw;
-            throw rt::Error("rt: cannot start another thread (" + std::string(e.what()) +
-                            "): try a smaller -j");
-        }
+        return rt::run_job(cl, rt::choose_threads(cl, auth, jobs));
     });
 }

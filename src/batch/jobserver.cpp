@@ -6,6 +6,7 @@
 
 #include <cerrno>
 #include <charconv>
+#include <cstdlib>
 #include <cstring>
 #include <vector>
 
@@ -49,6 +50,11 @@ bool is_pipe_end(int fd, int access, struct stat& st) {
 }
 
 }  // namespace
+
+JobserverAuth jobserver_from_environment() {
+    const char* makeflags = std::getenv("MAKEFLAGS");
+    return parse_makeflags(makeflags != nullptr ? makeflags : "");
+}
 
 JobserverAuth parse_makeflags(std::string_view makeflags) {
     JobserverAuth auth;

@@ -21,6 +21,8 @@ struct JobserverAuth {
 // (the last one counts), and the 'n' of make -n in MAKEFLAGS' first word. Negative
 // descriptors mean make disabled the jobserver for this command.
 JobserverAuth parse_makeflags(std::string_view makeflags);
+// The same for this process's MAKEFLAGS (none when it is not set).
+JobserverAuth jobserver_from_environment();
 
 class JobserverClient {
   public:

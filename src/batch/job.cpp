@@ -1,0 +1,213 @@
+#include "batch/job.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "batch/cost.h"
+#include "batch/depfile.h"
+#include "batch/progress.h"
+#include "batch/statistics.h"
+#include "common/exit_status.h"
+#include "common/interrupt.h"
+#include "common/message_text.h"
+#include "common/output_file.h"
+#include "rt/error.h"
+#include "rt/image_io.h"
+#include "rt/reader.h"
+#include "rt/trace.h"
+
+namespace rt {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// --size: the viewer's vectors stay, so the field of view does; say when pixels stop being
+// square, and which size would keep them so.
+void apply_size(Viewer& viewer, const ImageSize& size, bool quiet) {
+    // A size in the scene's own proportions keeps its pixels' shape, square or not.
+    const bool same_shape =
+        std::lround(static_cast<double>(size.width) * viewer.yres / viewer.xres) == size.height ||
+        std::lround(static_cast<double>(size.height) * viewer.xres / viewer.yres) == size.width;
+    viewer.xres = size.width;
+    viewer.yres = size.height;
+    if (quiet || same_shape) return;
+    if (const auto square = square_pixel_height(viewer))
+        std::cerr << "rt: warning: --size " << size.width << "x" << size.height
+                  << " gives non-square pixels (the viewer's x and y vectors are "
+                  << format_number(length(viewer.x) / length(viewer.y))
+                  << " : 1); for square pixels use --size " << size.width << "x" << *square
+                  << ", or change the viewer's vectors\n";
+}
+
+// The pixels to render, once --size has set the image's size: the whole image, or --region
+// when the image contains it (a usage error known only now).
+PixelRect fit_command_line(const CommandLine& cl, Viewer& viewer) {
+    if (cl.size) apply_size(viewer, *cl.size, cl.quiet);
+    const PixelRect region = cl.region.value_or(image_rect(viewer));
+    if (const auto problem = region_problem(region, viewer.xres, viewer.yres))
+        throw UsageError{*problem};
+    return region;
+}
+
+// -r: what was read, on standard output.
+int print_summary(const CommandLine& cl, const Scene& scene) {
+    std::ostringstream summary;
+    const std::string name = cl.input == "-" ? "<stdin>" : show_token(cl.input, kShowWhole);
+    summary << name << ": " << scene.objects.size() << " objects, " << scene.lights.size()
+            << " lights, " << scene.viewer.xres << "x" << scene.viewer.yres;
+    if (const std::size_t n = scene.skipped_triangles; n != 0)
+        summary << ", " << n << " zero-area " << (n == 1 ? "triangle" : "triangles") << " skipped";
+    summary << "\n";
+    return print_to_stdout("rt", summary.view());
+}
+
+void warn_about_cost(const CommandLine& cl, const Scene& scene) {
+    if (cl.quiet) return;
+    for (const std::string& warning : cost_warnings(scene, cl.render))
+        std::cerr << "rt: warning: " << printable_message(warning) << "\n";
+}
+
+// The image file and the -M rule's file. They are checked and claimed before rendering, so a
+// bad path fails fast, and are only replaced once complete. The files the render reads (the
+// scene, its textures) are never written over.
+class ClaimedOutputs {
+  public:
+    ClaimedOutputs(const CommandLine& cl, const Viewer& viewer, const PixelRect& region,
+                   const std::vector<fs::path>& textures)
+        : encoding_(encoding_of(cl, viewer, region)),
+          inputs_(inputs_of(cl, textures)),
+          image_(cl.output, inputs_) {
+        if (cl.depfile.empty()) return;
+        std::vector<std::string> dependencies;
+        if (cl.input != "-") dependencies.push_back(cl.input);
+        for (const auto& texture : textures) dependencies.push_back(texture.string());
+        rule_ = make_rule(cl.output, dependencies);
+        std::error_code ec;
+        if (fs::weakly_canonical(cl.depfile, ec) == fs::weakly_canonical(cl.output, ec))
+            throw Error(cl.depfile + ": -M and -o name the same file");
+        depfile_.emplace(cl.depfile, inputs_, "the dependency rule");
+    }
+
+    // Encodes and writes the image, then the rule: a rule for an image that failed would be
+    // a lie.
+    void write(const Raster& image, StageTimes& times) {
+        const auto start = Clock::now();
+        image_.write_bytes(encode_image(image, encoding_));
+        times.write = seconds_since(start);
+        if (depfile_) depfile_->write_bytes(rule_);
+    }
+
+  private:
+    static ImageEncoding encoding_of(const CommandLine& cl, const Viewer& viewer,
+                                     const PixelRect& region) {
+        ImageEncoding encoding = cl.image;
+        encoding.metadata = image_metadata(cl);
+        if (cl.region) add_region_metadata(encoding.metadata, region, viewer.xres, viewer.yres);
+        return encoding;
+    }
+    // The scene first (empty for standard input), then its textures.
+    static std::vector<fs::path> inputs_of(const CommandLine& cl,
+                                           const std::vector<fs::path>& textures) {
+        std::vector<fs::path> inputs = textures;
+        inputs.insert(inputs.begin(), cl.input == "-" ? std::string() : cl.input);
+        return inputs;
+    }
+
+    ImageEncoding encoding_;
+    std::vector<fs::path> inputs_;
+    OutputFile image_;
+    std::optional<OutputFile> depfile_;
+    std::string rule_;
+};
+
+// The render, with a progress display on standard error when it is a terminal or --progress
+// asks for one (never under -q).
+Raster render_with_progress(const CommandLine& cl, const Scene& scene, const RenderOptions& options,
+                            const PixelRect& region, RunStatistics& statistics) {
+    RenderProgress progress;
+    std::optional<ProgressDisplay> display;
+    if (!cl.quiet && (cl.progress || isatty(STDERR_FILENO) != 0))
+        display.emplace(progress,
+                        isatty(STDERR_FILENO) != 0 ? ProgressDisplay::Style::terminal
+                                                   : ProgressDisplay::Style::lines,
+                        std::cerr);
+    const auto start = Clock::now();
+    Raster image = render_region(scene, options, region, &statistics.rays, &progress);
+    statistics.times.render = seconds_since(start);
+    if (display) display->finish();
+    return image;
+}
+
+// --stats, on standard error once everything is written.
+void report_statistics(RunStatistics& statistics, const Scene& scene, const RenderOptions& options,
+                       const PixelRect& region) {
+    statistics.threads = render_threads(options, region);
+    statistics.objects = scene.objects.size();
+    statistics.lights = scene.lights.size();
+    statistics.peak_memory_bytes = peak_memory_bytes();
+    std::cerr << format_statistics(statistics);
+}
+
+}  // namespace
+
+int choose_threads(const CommandLine& cl, const JobserverAuth& auth,
+                   std::optional<JobserverClient>& jobs) {
+    const auto chosen = [&] {
+        if (cl.render.threads > 0) return cl.render.threads;
+        const int hardware = worker_threads(0);
+        if (auth.kind == JobserverAuth::Kind::none) return hardware;
+        if (auth.kind == JobserverAuth::Kind::disabled) return 1;
+        jobs.emplace(auth);
+        if (!jobs->usable()) {
+            std::cerr << "rt: warning: " << printable_message(jobs->problem())
+                      << "; rendering on 1 thread (-j N sets the number)\n";
+            return 1;
+        }
+        return 1 + jobs->acquire(hardware - 1);
+    };
+    const int threads = chosen();
+    if (const char* debug = std::getenv("RT_DEBUG");
+        debug != nullptr && std::strstr(debug, "threads") != nullptr)
+        std::cerr << "rt: " << threads << (threads == 1 ? " thread" : " threads") << ", "
+                  << interrupt::tokens_held() << " jobserver tokens\n";
+    return threads;
+}
+
+int run_job(const CommandLine& cl, int threads) try {
+    RunStatistics statistics;
+    std::vector<fs::path> textures;
+    Scene scene = read_scene_file(cl.input, threads, &statistics.times, &textures);
+    const PixelRect region = fit_command_line(cl, scene.viewer);
+    if (cl.read_only) return print_summary(cl, scene);
+    warn_about_cost(cl, scene);
+    ClaimedOutputs outputs(cl, scene.viewer, region, textures);
+    RenderOptions options = cl.render;
+    options.threads = threads;
+    const Raster image = render_with_progress(cl, scene, options, region, statistics);
+    outputs.write(image, statistics.times);
+    if (cl.stats) report_statistics(statistics, scene, options, region);
+    return kExitOk;
+} catch (const std::system_error& e) {
+    // std::thread's way to say the system would not start another thread.
+    if (e.code() != std::errc::resource_unavailable_try_again) throw;
+    throw Error("rt: cannot start another thread (" + std::string(e.what()) +
+                "): try a smaller -j");
+}
+
+}  // namespace rt
