@@ -50,6 +50,16 @@ inline std::vector<std::filesystem::path> files_with_extension(const std::filesy
     return files;
 }
 
+// The temporary files rt::OutputFile left in `dir` (NAME.tmp-XXXXXX): litter, once a program
+// has ended.
+inline std::vector<std::string> litter(const std::filesystem::path& dir) {
+    std::vector<std::string> found;
+    for (const auto& entry : std::filesystem::directory_iterator(dir))
+        if (entry.path().filename().string().find(".tmp-") != std::string::npos)
+            found.push_back(entry.path().filename().string());
+    return found;
+}
+
 // Runs a command through the shell: its status as std::system gives it.
 inline int shell(const std::string& command) { return std::system(command.c_str()); }
 

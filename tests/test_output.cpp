@@ -11,8 +11,8 @@
 #include <cstring>
 
 #include "check.h"
-#include "process_util.h"
 #include "common/output_file.h"
+#include "process_util.h"
 
 using namespace rt_test;
 namespace fs = std::filesystem;
@@ -29,15 +29,6 @@ fs::path scene_dir(const std::string& name) {
     ::chmod(dir.c_str(), 0755);
     write_file(dir / "scene.in", kScene);
     return dir;
-}
-
-// The names in dir that are not the test's own files: temporary litter shows up here.
-std::vector<std::string> litter(const fs::path& dir) {
-    std::vector<std::string> found;
-    for (const auto& entry : fs::directory_iterator(dir))
-        if (entry.path().filename().string().find(".tmp-") != std::string::npos)
-            found.push_back(entry.path().filename().string());
-    return found;
 }
 
 mode_t mode_of(const fs::path& path) {
@@ -59,9 +50,10 @@ TEST(a_regular_file_is_replaced_with_its_mode) {
         CHECK_EQ(mode_of(dir / "out.ppm") & 07777, mode);
     }
     // A new file gets what a shell redirect would: 0666 less the umask.
-    CHECK_EQ(
-        run_rt(dir, "scene.in --no-metadata -o new.ppm; umask 027; '" RT_BINARY "' scene.in --no-metadata -o new2.ppm").status,
-        0);
+    CHECK_EQ(run_rt(dir, "scene.in --no-metadata -o new.ppm; umask 027; '" RT_BINARY
+                         "' scene.in --no-metadata -o new2.ppm")
+                 .status,
+             0);
     const mode_t mask = ::umask(0);
     ::umask(mask);
     CHECK_EQ(mode_of(dir / "new.ppm") & 0777, 0666 & ~mask);

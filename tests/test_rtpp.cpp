@@ -1,10 +1,17 @@
 // rtpp, the readable scene language: expressions against hand-computed values, transforms
 // against the frames they must write, the camera against the viewer it must write, errors
 // with their places and include chains, line markers through rt, and the limits.
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "check.h"
 #include "cli_util.h"
@@ -13,6 +20,7 @@
 #include "rtpp/transform.h"
 
 namespace fs = std::filesystem;
+using rt_test::litter;
 using rt_test::read_file;
 using rt_test::write_file;
 
@@ -385,4 +393,96 @@ TEST(the_command_line_follows_rts_conventions) {
     CHECK_CONTAINS(read_file(dir / "keep.in"), "102 0 0 5");
     CHECK_EQ(run("missing.rts"), 1);
     CHECK_CONTAINS(read_file(dir / "err.txt"), "missing.rts: cannot open");
+}
+
+namespace {
+
+// A scene of `n` x 1000 spheres: big enough that writing it takes a while.
+std::string many_spheres(int n) {
+    return kCamera + "let s = surface { colour 1 kd 1 }\nfor i = 1 to " + std::to_string(n) +
+           " { for j = 1 to 1000 { sphere { radius 0.1 centre <i, j, 0> surface s } } }\n";
+}
+
+// Runs `rtpp args` in `dir` through the shell; its exit status.
+int run_rtpp(const fs::path& dir, const std::string& args) {
+    const std::string command = "cd '" + dir.string() + "' && '" RTPP_BINARY "' " + args +
+                                " 2>>err.txt; echo $? >status.txt";
+    if (std::system(command.c_str()) != 0) return -1;
+    return std::atoi(read_file(dir / "status.txt").c_str());
+}
+
+}  // namespace
+
+// As under make -j: two rtpp writing the same file at once each write a temporary file of
+// their own, so the one renamed last is whole and nothing else is left.
+TEST(two_rtpp_writing_one_output_leave_one_complete_file) {
+    const fs::path dir = rt_test::work_dir("rtpp-concurrent");
+    write_file(dir / "s.rts", many_spheres(200));
+    CHECK_EQ(run_rtpp(dir, "s.rts -o alone.in"), 0);
+    const std::string alone = read_file(dir / "alone.in");
+    CHECK(alone.size() > 10000000);
+    for (int round = 0; round < 5; ++round) {
+        const std::string rtpp = "'" RTPP_BINARY "' s.rts -o out.in";
+        const std::string command = "cd '" + dir.string() + "' && { " + rtpp + " & a=$!; " + rtpp +
+                                    " & b=$!; wait $a; x=$?; wait $b; echo $x $? " +
+                                    ">both.txt; } 2>err.txt";
+        CHECK_EQ(std::system(command.c_str()), 0);
+        CHECK_EQ(read_file(dir / "both.txt"), std::string("0 0\n"));
+        CHECK_EQ(read_file(dir / "err.txt"), std::string());
+        CHECK(read_file(dir / "out.in") == alone);
+        CHECK(litter(dir).empty());
+    }
+}
+
+TEST(rtpp_keeps_the_outputs_mode_and_refuses_its_scene_as_output) {
+    const fs::path dir = rt_test::work_dir("rtpp-mode");
+    write_file(dir / "s.rts", kCamera);
+    write_file(dir / "out.in", "old");
+    ::chmod((dir / "out.in").c_str(), 0640);
+    CHECK_EQ(run_rtpp(dir, "s.rts -o out.in"), 0);
+    CHECK_CONTAINS(read_file(dir / "out.in"), "102 0 0 5");
+    struct stat st {};
+    CHECK_EQ(::stat((dir / "out.in").c_str(), &st), 0);
+    CHECK_EQ(st.st_mode & 07777, static_cast<mode_t>(0640));
+    // The scene is never written over, whatever it is called.
+    CHECK_EQ(run_rtpp(dir, "s.rts -o ./s.rts"), 1);
+    CHECK_CONTAINS(read_file(dir / "err.txt"),
+                   "./s.rts: cannot write the output file: it is the scene file 's.rts'");
+    CHECK_EQ(read_file(dir / "s.rts"), kCamera);
+    // A missing directory is found before the scene is compiled.
+    CHECK_EQ(run_rtpp(dir, "missing.rts -o no/such.in"), 1);
+    CHECK_CONTAINS(read_file(dir / "err.txt"),
+                   "no/such.in: cannot write the output file: the directory 'no' does not exist");
+    // A device is written in place.
+    CHECK_EQ(run_rtpp(dir, "s.rts -o /dev/null"), 0);
+    CHECK(litter(dir).empty());
+}
+
+TEST(an_interrupted_rtpp_leaves_no_temporary_file) {
+    const fs::path dir = rt_test::work_dir("rtpp-signal");
+    write_file(dir / "big.rts", many_spheres(1000));
+    write_file(dir / "out.in", "old");
+    const std::string dir_text = dir.string();
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        const int err = ::open((dir_text + "/err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (err < 0 || ::chdir(dir_text.c_str()) != 0) ::_exit(125);
+        ::dup2(err, STDERR_FILENO);
+        ::execl(RTPP_BINARY, RTPP_BINARY, "big.rts", "-o", "out.in", static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    // The temporary file exists from before the scene is compiled.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (litter(dir).empty() && std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    CHECK(!litter(dir).empty());
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    ::kill(pid, SIGTERM);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    CHECK(WIFSIGNALED(status));
+    CHECK_EQ(WIFSIGNALED(status) ? WTERMSIG(status) : 0, SIGTERM);
+    CHECK_EQ(read_file(dir / "err.txt"), std::string("rtpp: interrupted\n"));
+    CHECK(litter(dir).empty());
+    CHECK_EQ(read_file(dir / "out.in"), std::string("old"));
 }

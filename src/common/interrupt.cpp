@@ -31,6 +31,9 @@ std::atomic<int> g_handling{0};  // 1 while a handler cleans up, 2 once it is do
 
 constexpr int kHandled[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE};
 
+// "PROGRAM: interrupted\n", set before the handler is installed.
+char g_interrupted[64] = "rt: interrupted\n";
+
 void write_stderr(const char* text) {
     std::size_t left = std::strlen(text);
     while (left > 0) {
@@ -50,7 +53,7 @@ extern "C" void on_signal(int sig) {
             if (g_slot_state[i].exchange(kFree) == kArmed) ::unlink(g_paths[i]);
         give_back_tokens();
         // A reader that went away (SIGPIPE) is not news to the user.
-        if (sig != SIGPIPE) write_stderr("rt: interrupted\n");
+        if (sig != SIGPIPE) write_stderr(g_interrupted);
         g_handling.store(2);
     } else {
         // Another thread is cleaning up: let it finish before this signal ends the process.
@@ -76,7 +79,13 @@ sigset_t handled_set() {
 
 }  // namespace
 
-void install_handlers() {
+void install_handlers(std::string_view program) {
+    const std::string_view tail = ": interrupted\n";
+    if (program.size() + tail.size() < sizeof g_interrupted) {
+        std::memcpy(g_interrupted, program.data(), program.size());
+        std::memcpy(g_interrupted + program.size(), tail.data(), tail.size());
+        g_interrupted[program.size() + tail.size()] = '\0';
+    }
     struct sigaction action {};
     action.sa_handler = on_signal;
     action.sa_mask = handled_set();  // one clean-up at a time in a thread

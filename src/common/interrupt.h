@@ -6,12 +6,14 @@
 
 #include <csignal>
 #include <string>
+#include <string_view>
 
 namespace rt::interrupt {
 
-// Installs the handler for SIGINT, SIGTERM and SIGHUP (which print "rt: interrupted") and
-// SIGPIPE (silent), leaving alone any of them that the parent set to be ignored (nohup).
-void install_handlers();
+// Installs the handler for SIGINT, SIGTERM and SIGHUP (which print "PROGRAM: interrupted",
+// "rt: interrupted" by default) and SIGPIPE (silent), leaving alone any of them that the
+// parent set to be ignored (nohup).
+void install_handlers(std::string_view program = "rt");
 
 // Registers a file for the handler to unlink; returns a slot for forget_temporary(), or -1
 // when the path is too long to hold or every slot is taken (nothing is registered then).

@@ -1,12 +1,9 @@
 #include "rtpp/command_line.h"
 
-#include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iostream>
 
+#include "common/exit_status.h"
 #include "common/message_text.h"
-#include "rtpp/source.h"
 
 namespace rtpp {
 
@@ -65,38 +62,16 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     return cl;
 }
 
-void write_output(const std::string& path, const std::string& text) {
-    if (path == "-") {
-        std::cout.write(text.data(), static_cast<std::streamsize>(text.size()));
-        std::cout.flush();
-        if (!std::cout) throw CompileError("rtpp: cannot write to standard output");
-        return;
-    }
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    if (fs::exists(path, ec) && !fs::is_regular_file(path, ec))
-        throw CompileError(path + ": not a regular file; rtpp writes only regular files");
-    const fs::path target(path);
-    // (Appended, not built with "literal" + string: g++ 12 warns falsely about that chain.)
-    std::string temporary_name = ".";
-    temporary_name += target.filename().string();
-    temporary_name += ".rtpp-tmp";
-    const fs::path temporary = target.parent_path() / temporary_name;
-    {
-        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        if (!out) throw CompileError(path + ": cannot create the output file");
-        out.write(text.data(), static_cast<std::streamsize>(text.size()));
-        out.close();
-        if (!out) {
-            fs::remove(temporary, ec);
-            throw CompileError(path + ": cannot write the output file");
-        }
-    }
-    fs::rename(temporary, target, ec);
-    if (ec) {
-        fs::remove(temporary, ec);
-        throw CompileError(path + ": cannot replace the output file");
-    }
+SceneOutput::SceneOutput(const CommandLine& cl) {
+    if (cl.output == "-") return;
+    file_.emplace(cl.output, std::vector<std::filesystem::path>{cl.input == "-" ? "" : cl.input},
+                  "the output file");
+}
+
+int SceneOutput::write(const std::string& text) {
+    if (!file_) return rt::print_to_stdout("rtpp", text);
+    file_->write_bytes(text);
+    return rt::kExitOk;
 }
 
 }  // namespace rtpp

@@ -1,10 +1,12 @@
 // rtpp's command line, parsed apart from main() so that tests can check it.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "common/option_reader.h"
+#include "common/output_file.h"
 
 namespace rtpp {
 
@@ -21,8 +23,20 @@ using rt::UsageError;
 CommandLine parse_command_line(const std::vector<std::string>& args);
 const char* usage_text();
 
-// Writes `text` to `path` ("-": standard output) through a temporary file beside it, so a
-// failed run leaves an existing file as it was. Throws CompileError.
-void write_output(const std::string& path, const std::string& text);
+// Where rtpp writes the numeric scene: standard output for "-" (a terminal too, the scene
+// being text), else a file claimed through rt::OutputFile when constructed, before compiling,
+// so that a bad path fails fast. The file is replaced only once complete (a temporary file
+// of its own beside it, removed on an error or a signal), keeps its mode, and is never the
+// scene being compiled; a device or FIFO is written in place. Throws rt::Error.
+class SceneOutput {
+  public:
+    explicit SceneOutput(const CommandLine& cl);
+
+    // Writes the whole scene; returns the exit status.
+    int write(const std::string& text);
+
+  private:
+    std::optional<rt::OutputFile> file_;
+};
 
 }  // namespace rtpp

@@ -1,5 +1,6 @@
 // rtpp: compiles rt's readable scene language to its numeric scene format.
 #include "common/exit_status.h"
+#include "common/interrupt.h"
 #include "rtpp/command_line.h"
 #include "rtpp/compiler.h"
 
@@ -8,9 +9,10 @@ int main(int argc, char** argv) {
         const rtpp::CommandLine cl = rtpp::parse_command_line({argv + 1, argv + argc});
         if (cl.help) return rt::print_to_stdout("rtpp", rtpp::usage_text());
         if (cl.version) return rt::print_to_stdout("rtpp", "rtpp " RT_VERSION "\n");
+        rt::interrupt::install_handlers("rtpp");  // a signal removes the temporary file
+        rtpp::SceneOutput output(cl);
         rtpp::CompileOptions options;
         for (const std::string& dir : cl.include_dirs) options.include_dirs.emplace_back(dir);
-        rtpp::write_output(cl.output, rtpp::compile_file(cl.input, options));
-        return rt::kExitOk;
+        return output.write(rtpp::compile_file(cl.input, options));
     });
 }
