@@ -3,6 +3,8 @@
 #include "batch/cli.h"
 #include "check.h"
 #include "cli_util.h"
+#include "common/message_text.h"
+#include "common/option_reader.h"
 #include "error_cases.h"
 #include "process_util.h"
 
@@ -272,4 +274,34 @@ TEST(text_that_cannot_be_written_is_an_error) {
                      name + ": cannot write to standard output: No space left on device\n");
         }
     }
+}
+
+// One rule for the numbers rt and rtimg take (common/option_reader.h): a leading '+' before a
+// digit or '.', decimal only.
+TEST(numbers_follow_one_rule_in_rt_and_rtimg) {
+    CHECK_EQ(rt::parse_nonnegative("-w", "+0.5"), 0.5);
+    CHECK_EQ(rt::parse_nonnegative("-w", "+.25"), 0.25);
+    CHECK_EQ(rt::parse_whole_number("-d", "+7", 0, 64), 7);
+    for (const char* bad : {"+", "++1", "+-1", "-1", "+inf", "inf", "nan", "0x10", "1e", ""}) {
+        bool refused = false;
+        try {
+            rt::parse_nonnegative("-w", bad);
+        } catch (const rt::UsageError& e) {
+            refused = e.message == "-w expects a number >= 0, got " + rt::quote_token(bad);
+        }
+        CHECK(refused);
+    }
+    const fs::path dir = work_dir("plus");
+    write_file(dir / "scene.in", kScene);
+    CHECK_EQ(run_rt(dir, "scene.in -w +0.01 -o a.ppm").status, 0);
+    CHECK_EQ(run_rt(dir, "scene.in -d +7 -o b.ppm").status, 0);
+    RunResult r = run_rtimg(dir, "diff --tolerance +2 --max-fraction=+.5 a.ppm b.ppm");
+    CHECK_EQ(r.status, 0);
+    CHECK_CONTAINS(r.out, "result: pass");
+    r = run_rtimg(dir, "diff --tolerance ++2 a.ppm b.ppm");
+    CHECK_EQ(r.status, 2);
+    CHECK_CONTAINS(r.err, "rtimg: --tolerance expects a number >= 0, got '++2'");
+    r = run_rtimg(dir, "diff --max-fraction 1e400 a.ppm b.ppm");
+    CHECK_EQ(r.status, 2);
+    CHECK_CONTAINS(r.err, "rtimg: --max-fraction 1e400 is out of range (above about 1.8e308)");
 }

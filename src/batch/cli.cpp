@@ -21,46 +21,6 @@ constexpr int kMaxDepthOption = 64;
 constexpr int kMaxSamplesOption = 64;
 constexpr int kMaxThreadsOption = 1024;
 
-// The text of a number without the leading '+' a user may write (+5); from_chars takes none.
-std::string_view unsigned_text(const std::string& text) {
-    std::string_view view(text);
-    if (view.size() > 1 && view[0] == '+' && ((view[1] >= '0' && view[1] <= '9') || view[1] == '.'))
-        view.remove_prefix(1);
-    return view;
-}
-
-int parse_int(const std::string& option, const std::string& text, int min, int max) {
-    const std::string_view digits = unsigned_text(text);
-    long long value = 0;
-    const char* end = digits.data() + digits.size();
-    const auto [ptr, ec] = std::from_chars(digits.data(), end, value);
-    const std::string range = option + " " + show_token(text) + " is out of range (" +
-                              std::to_string(min) + " to " + std::to_string(max) + ")";
-    if (ec == std::errc::result_out_of_range && ptr == end) throw UsageError{range};
-    if (ec != std::errc() || ptr != end || digits.empty())
-        throw UsageError{option + " expects a whole number, got " + quote_token(text)};
-    if (value < min || value > max) throw UsageError{range};
-    return static_cast<int>(value);
-}
-
-double parse_double(const std::string& option, const std::string& text) {
-    const std::string_view digits = unsigned_text(text);
-    double value = 0;
-    const char* end = digits.data() + digits.size();
-    const auto [ptr, ec] = std::from_chars(digits.data(), end, value);
-    // Out of range is too large or, closer to 0 than a double can be and not 0, too small.
-    if (ec == std::errc::result_out_of_range && ptr == end) {
-        if (std::fabs(std::strtod(std::string(digits).c_str(), nullptr)) < 1)
-            throw UsageError{option + " " + show_token(text) +
-                             " is too small to tell from 0 (below about 4.9e-324); write 0"};
-        throw UsageError{option + " " + show_token(text) +
-                         " is out of range (above about 1.8e308)"};
-    }
-    if (ec != std::errc() || ptr != end || digits.empty() || !std::isfinite(value) || value < 0)
-        throw UsageError{option + " expects a number >= 0, got " + quote_token(text)};
-    return value;
-}
-
 // WxH, each side and the whole within the limits the viewer has in a scene.
 ImageSize parse_size(const std::string& text) {
     const auto x = text.find('x');
@@ -283,18 +243,18 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
             cl.depfile = take_value();
             if (cl.depfile.empty() || cl.depfile == "-") throw UsageError{"-M needs a file name"};
         } else if (arg == "-d" || arg == "--depth") {
-            r.max_depth = parse_int("-d", take_value(), 0, kMaxDepthOption);
+            r.max_depth = parse_whole_number("-d", take_value(), 0, kMaxDepthOption);
         } else if (arg == "-w" || arg == "--weight") {
-            r.min_weight = parse_double("-w", take_value());
+            r.min_weight = parse_nonnegative("-w", take_value());
         } else if (arg == "-m" || arg == "--mode") {
             r.mode = parse_mode(take_value());
         } else if (arg == "-s" || arg == "--samples") {
-            r.samples = parse_int("-s", take_value(), 1, kMaxSamplesOption);
+            r.samples = parse_whole_number("-s", take_value(), 1, kMaxSamplesOption);
             have_samples = true;
         } else if (arg == "-a" || arg == "--adaptive") {
-            r.adaptive_threshold = parse_double("-a", take_value());
+            r.adaptive_threshold = parse_nonnegative("-a", take_value());
         } else if (arg == "-j" || arg == "--threads") {
-            r.threads = parse_int("-j", take_value(), 1, kMaxThreadsOption);
+            r.threads = parse_whole_number("-j", take_value(), 1, kMaxThreadsOption);
         } else if (arg == "--size") {
             cl.size = parse_size(take_value());
         } else if (arg == "--region") {

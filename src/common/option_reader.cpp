@@ -1,8 +1,56 @@
 #include "common/option_reader.h"
 
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+
 #include "common/message_text.h"
 
 namespace rt {
+
+namespace {
+
+// The text of a number without the leading '+' a user may write (+5); from_chars takes none.
+std::string_view unsigned_text(const std::string& text) {
+    std::string_view view(text);
+    if (view.size() > 1 && view[0] == '+' && ((view[1] >= '0' && view[1] <= '9') || view[1] == '.'))
+        view.remove_prefix(1);
+    return view;
+}
+
+}  // namespace
+
+int parse_whole_number(const std::string& option, const std::string& text, int min, int max) {
+    const std::string_view digits = unsigned_text(text);
+    long long value = 0;
+    const char* end = digits.data() + digits.size();
+    const auto [ptr, ec] = std::from_chars(digits.data(), end, value);
+    const std::string range = option + " " + show_token(text) + " is out of range (" +
+                              std::to_string(min) + " to " + std::to_string(max) + ")";
+    if (ec == std::errc::result_out_of_range && ptr == end) throw UsageError{range};
+    if (ec != std::errc() || ptr != end || digits.empty())
+        throw UsageError{option + " expects a whole number, got " + quote_token(text)};
+    if (value < min || value > max) throw UsageError{range};
+    return static_cast<int>(value);
+}
+
+double parse_nonnegative(const std::string& option, const std::string& text) {
+    const std::string_view digits = unsigned_text(text);
+    double value = 0;
+    const char* end = digits.data() + digits.size();
+    const auto [ptr, ec] = std::from_chars(digits.data(), end, value);
+    // Out of range is too large or, closer to 0 than a double can be and not 0, too small.
+    if (ec == std::errc::result_out_of_range && ptr == end) {
+        if (std::fabs(std::strtod(std::string(digits).c_str(), nullptr)) < 1)
+            throw UsageError{option + " " + show_token(text) +
+                             " is too small to tell from 0 (below about 4.9e-324); write 0"};
+        throw UsageError{option + " " + show_token(text) +
+                         " is out of range (above about 1.8e308)"};
+    }
+    if (ec != std::errc() || ptr != end || digits.empty() || !std::isfinite(value) || value < 0)
+        throw UsageError{option + " expects a number >= 0, got " + quote_token(text)};
+    return value;
+}
 
 OptionReader::OptionReader(const std::vector<std::string>& args, std::string_view short_with_value)
     : args_(args), short_with_value_(short_with_value) {}

@@ -15,6 +15,14 @@ struct UsageError {
     std::string message;
 };
 
+// The numbers options take, read by one rule in rt and rtimg: decimal, as std::from_chars
+// reads it (no hexadecimal, infinity or NaN), with one leading '+' allowed before a digit or
+// '.' (+5, +.5), as strtod would. A value out of range is refused saying so, however many
+// digits it has. Both throw UsageError naming `option`.
+int parse_whole_number(const std::string& option, const std::string& text, int min, int max);
+// A number >= 0; one too close to 0 to be told from it (1e-400) is refused, not taken as 0.
+double parse_nonnegative(const std::string& option, const std::string& text);
+
 class OptionReader {
   public:
     // `short_with_value` lists the letters of the short options that take a value ("do" for

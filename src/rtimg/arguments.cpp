@@ -1,12 +1,10 @@
 // The command-line pieces rtimg's commands share, and writing their images.
 #include <algorithm>
-#include <charconv>
-#include <cmath>
 
-#include "rt/error.h"
-#include "rt/image_file.h"
 #include "common/message_text.h"
 #include "common/output_file.h"
+#include "rt/error.h"
+#include "rt/image_file.h"
 #include "rtimg.h"
 
 namespace rtimg {
@@ -33,15 +31,6 @@ Arguments parse_arguments(const std::vector<std::string>& args,
         }
     }
     return out;
-}
-
-double parse_nonnegative(const std::string& option, const std::string& text) {
-    double value = 0;
-    const char* end = text.data() + text.size();
-    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-    if (text.empty() || ec != std::errc() || ptr != end || !std::isfinite(value) || value < 0)
-        throw UsageError{option + " expects a number >= 0, got " + rt::quote_token(text)};
-    return value;
 }
 
 rt::ImageFormat output_format(const std::string& path) {

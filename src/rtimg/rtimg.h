@@ -31,8 +31,8 @@ struct Arguments {
 Arguments parse_arguments(const std::vector<std::string>& args,
                           const std::vector<std::string>& valued,
                           const std::vector<std::string>& flags);
-// A number >= 0 given to `option`.
-double parse_nonnegative(const std::string& option, const std::string& text);
+// A number >= 0 given to `option`, read as rt reads its numbers (a leading '+' allowed).
+using rt::parse_nonnegative;
 // The format an output file's name asks for (.ppm, .pgm, .png, .pfm).
 rt::ImageFormat output_format(const std::string& path);
 // Writes samples in the format `path` names (PPM, plain PPM with `plain`, or PNG), safely
