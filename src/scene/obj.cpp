@@ -144,6 +144,7 @@ class ObjReader {
         if (q == end_) return "the end of the file";
         if (is_line_end(*q)) return "the end of the line";
         if (*q == '#') return "a comment";
+        if (is_blank(*q)) return "white space";
         const char* e = q;
         while (e < end_ && !is_blank(*e) && !is_line_end(*e)) ++e;
         return quoted({q, static_cast<std::size_t>(e - q)});

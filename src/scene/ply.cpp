@@ -2,6 +2,7 @@
 // claimed counts are checked against the bytes that follow, and then one body reader (ASCII,
 // little- or big-endian) walks the records, keeping x y z, nx ny nz and the face index lists.
 #include <algorithm>
+#include <bit>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -364,8 +365,8 @@ class HeaderReader {
             if (indices != nullptr || (p.name != "vertex_indices" && p.name != "vertex_index"))
                 continue;
             if (!p.list)
-                fail(p.offset, "expected face property '" + p.name + "' to be a list, found a " +
-                                   p.type_name);
+                fail(p.offset,
+                     "expected face property '" + p.name + "' to be a list, found a scalar");
             if (!is_integer(p.type))
                 fail(p.offset, "expected an integer type for the vertex indices, found " +
                                    quoted(p.type_name));
@@ -519,7 +520,9 @@ class BinaryBody {
         advance(p, sizeof(T));
         unsigned char raw[sizeof(T)];
         std::memcpy(raw, at, sizeof(T));
-        if constexpr (kBigEndian) std::reverse(raw, raw + sizeof(T));
+        // The file's order differs from the machine's: reverse the bytes.
+        if constexpr (kBigEndian != (std::endian::native == std::endian::big))
+            std::reverse(raw, raw + sizeof(T));
         T v;
         std::memcpy(&v, raw, sizeof(T));
         return v;
