@@ -498,6 +498,10 @@ class BinaryBody {
 
     // What is left after the last element, for a note.
     std::size_t left() const { return static_cast<std::size_t>(end_ - p_); }
+    // The fewest bytes a face of one triangle takes: its count and three indices.
+    static std::size_t least_triangle_face(const Property& p) {
+        return size_of(p.count_type) + 3 * size_of(p.type);
+    }
 
     [[noreturn]] void fail(const std::string& what) const {
         throw Error(name_ + ": " + element_->name + " " + number_text(index_) + ", byte " +
@@ -601,6 +605,10 @@ class AsciiBody {
         for (std::int64_t i = 0; i < n; ++i) word(p);
     }
 
+    std::size_t left() const { return static_cast<std::size_t>(end_ - p_); }
+    // The fewest bytes a face of one triangle takes: four values and their separators.
+    static std::size_t least_triangle_face(const Property&) { return 8; }
+
     // Whether anything but white space follows the last element, for a note.
     bool text_left() {
         while (p_ < end_ && is_space(*p_)) ++p_;
@@ -680,7 +688,12 @@ std::uint32_t read_index(Body& body, const Property& p, std::uint64_t vertex_cou
 
 template <typename Body>
 void read_faces(Body& body, const Element& e, std::uint64_t vertex_count, MeshFile& mesh) {
-    mesh.triangles.reserve(e.count);
+    // Room for as many triangles as the faces and the bytes left can hold, whichever is
+    // fewer: faces of fewer than three indices take a byte or two and give none.
+    for (const Property& p : e.properties)
+        if (p.role == kIndices)
+            mesh.triangles.reserve(
+                std::min<std::uint64_t>(e.count, body.left() / Body::least_triangle_face(p)));
     std::uint64_t short_faces = 0;
     for (std::uint64_t i = 0; i < e.count; ++i) {
         body.start(e, i);
