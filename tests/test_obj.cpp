@@ -237,6 +237,10 @@ TEST(face_errors_name_the_corner) {
                 "t.obj:5:6: expected '/' or the end of the corner, found 'x'");
     CHECK_ERROR(face("vn 0 0 1\nf 1//1 2//2 3//1"),
                 "t.obj:5:11: expected a normal index from 1 to 1 or from -1 to -1, found '2'");
+    CHECK_ERROR(face("vt 0 0\nvn 0 0 1\nf 1/1/1/1 2 3"),
+                "t.obj:6:8: expected the end of the corner, found '/1'");
+    CHECK_ERROR(face("vn 0 0 1\nf 1//1x 2 3"),
+                "t.obj:5:7: expected the end of the corner, found 'x'");
     // Indices name what is defined before the face, not after it.
     CHECK_ERROR(obj("f 1 2 3\n" + kThree),
                 "t.obj:1:3: expected a vertex index, found '1', but no vertices are defined "

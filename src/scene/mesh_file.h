@@ -45,15 +45,23 @@ MeshFile read_mesh_file(std::string_view bytes, const std::string& display_name)
 
 // PLY 1.0: ascii, binary_little_endian or binary_big_endian; element vertex with x, y, z and
 // optionally nx, ny, nz (all three, or the normals are ignored); element face with a list
-// vertex_indices (or vertex_index). Faces of fewer than 3 indices are skipped (and noted);
-// other properties and elements are skipped whatever their type (and noted).
+// vertex_indices (or vertex_index; the first such list is used). Faces of fewer than 3
+// indices are skipped (and noted); other properties and elements are skipped whatever their
+// type (and noted). Claimed counts are checked against the bytes after the header before
+// anything is reserved. ASCII records are a stream of values (line breaks are not checked);
+// ASCII values of type float keep the decimal as a double; integer values must fit their
+// type. In a binary file end_header's line must end as the "ply" line does. Bytes after the
+// last element are noted, not refused. Coordinates and normals must be finite.
 MeshFile read_ply(std::string_view bytes, const std::string& display_name);
 
 // Wavefront OBJ: v, vn and f (v, v/vt, v//vn, v/vt/vn; negative indices count back from the
 // last vertex defined so far; an index must name a vertex or normal defined before its face).
 // A position whose corners carry different normals becomes one vertex per distinct normal;
-// the mesh has normals only when every face corner has one. Other statements of the OBJ
-// format are ignored and noted once each; anything else is an error.
+// the mesh has normals only when every face corner has one (else they are ignored, noted).
+// A face needs at least 3 corners. "#" starts a comment anywhere; a backslash at the end of a
+// line continues it; a leading byte-order mark is skipped. Other statements of the OBJ
+// format (vt, o, g, s, usemtl, mtllib, l, p, and free-form geometry) are ignored and noted
+// once each; anything else is an error.
 MeshFile read_obj(std::string_view bytes, const std::string& display_name);
 
 // Angle-weighted vertex normals (mode 2 of ID 15): each triangle adds its unit face normal

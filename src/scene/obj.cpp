@@ -252,6 +252,8 @@ class ObjReader {
                 }
             }
             c.normal = index(normals_.size(), "a normal index", "normals");
+            if (!is_delimiter(p_)) fail(p_, "expected the end of the corner, found " + found(p_));
+            return c;
         }
         if (!is_delimiter(p_))
             fail(p_, "expected '/' or the end of the corner, found " + found(p_));
