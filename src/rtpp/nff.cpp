@@ -127,6 +127,11 @@ class Lexer {
 
     bool read_line() {
         if (buf_ == nullptr || at_end_) return false;
+        // At the end, the last line stays: the end of input is placed after it.
+        if (buf_->sgetc() == std::char_traits<char>::eof()) {
+            at_end_ = true;
+            return false;
+        }
         line_.clear();
         pos_ = 0;
         ++line_number_;

@@ -42,8 +42,8 @@ struct NffView {
     double angle = 0;
     int xres = 0, yres = 0;
 };
-// rt's viewer (102) whose corner rays are NFF's centre rays: rt's ray through raster position
-// (X + 1/2, Y + 1/2) is NFF's ray through the centre of pixel (X, Y).
+// rt's viewer (102) whose rays are NFF's: the ray rt traces for pixel (X, Y), through the
+// raster position (X, Y) that would be the pixel's corner, is NFF's ray through its centre.
 struct NffViewer {
     rt::Vec3 eye, look_at, x, y;
 };
