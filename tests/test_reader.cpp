@@ -66,7 +66,8 @@ TEST(table_lookup) {
     CHECK(find_light_type(103) == nullptr);  // the ambient light is summed, not sampled
     for (const PrimitiveType& row : primitive_types()) {
         CHECK(row.id >= 1 && row.id <= 99);
-        CHECK(row.read && row.intersect && row.normal && row.bounds);
+        const PrimitiveFunctions& f = *row.functions;
+        CHECK(f.read && f.intersect && f.normal && f.bounds);
     }
 }
 

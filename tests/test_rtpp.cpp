@@ -6,17 +6,20 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <filesystem>
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "check.h"
 #include "cli_util.h"
 #include "rt/reader.h"
 #include "rtpp/compiler.h"
+#include "rtpp/kinds.h"
 #include "rtpp/transform.h"
 
 namespace fs = std::filesystem;
@@ -136,6 +139,28 @@ TEST(every_object_kind_writes_its_contract_numbers) {
                                     "sphere { radius 1 }")
                  .substr(compile_body(kCamera).size()),
              std::string("105 100 1 1 1 0 1 1 0 1\n1 1 0 0 0 106\n"));
+}
+
+TEST(every_kind_row_is_whole) {
+    // The emitter writes a kind from its row alone, so a row must name what it writes with.
+    for (const rtpp::Kind& kind : rtpp::all_kinds()) {
+        std::vector<std::string> names, listed;
+        for (const rtpp::FieldSpec& spec : kind.fields) {
+            names.emplace_back(spec.name);
+            if (spec.other == nullptr) continue;
+            const rtpp::FieldSpec* other = kind.field(spec.other);
+            CHECK(other != nullptr && other->write == rtpp::Write::none);
+        }
+        if (kind.category == rtpp::Category::primitive)
+            CHECK(kind.fields.back().write == rtpp::Write::slot);
+        if (kind.category == rtpp::Category::csg) CHECK(kind.rest_id != 0 && kind.fields.empty());
+        // A kind listed in another order lists the same fields.
+        std::istringstream in(kind.field_names());
+        for (std::string name; std::getline(in >> std::ws, name, ',');) listed.push_back(name);
+        std::sort(names.begin(), names.end());
+        std::sort(listed.begin(), listed.end());
+        CHECK(names == listed);
+    }
 }
 
 TEST(transforms_write_the_frames_that_map_points_alike) {

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "rt/ray.h"
@@ -66,9 +67,9 @@ using CrossFn = bool(const void* shape, const Ray& ray, Interval range, Crossing
 // whether the point at t_min (just past it) is inside the solid.
 using CollectFn = bool(const void* shape, const Ray& ray, double t_min, Crossings& out);
 
-struct PrimitiveType {
-    int id;
-    const char* name;
+// What a primitive does. Each primitive's source file defines one, at its end, from
+// functions private to that file; the table in table.cpp gives it an ID and a name.
+struct PrimitiveFunctions {
     ReadShapeFn* read;
     IntersectFn* intersect;
     NormalFn* normal;
@@ -95,16 +96,32 @@ struct PrimitiveType {
     BoundsFn* solid_bounds = nullptr;
 };
 
+// One row of the table: the scene format's ID, the name messages use, and what it does.
+struct PrimitiveType {
+    int id;
+    const char* name;
+    const PrimitiveFunctions* functions;
+};
+
 // A primitive type with its parameters: what the scene stores for each primitive.
 struct Shape {
     const PrimitiveType* type = nullptr;
+    // The type's functions, held here as well so that a call through a shape (an affine's
+    // inner primitive, a composite's operands) costs one load, as through the hierarchy.
+    const PrimitiveFunctions* functions = nullptr;
     ShapeData data;
 
+    Shape() = default;
+    Shape(const PrimitiveType* row, ShapeData parameters)
+        : type(row), functions(row->functions), data(std::move(parameters)) {}
+
     bool intersect(const Ray& ray, Interval range, Hit& hit) const {
-        return type->intersect(data.get(), ray, range, hit);
+        return functions->intersect(data.get(), ray, range, hit);
     }
+    IntersectFn* intersect_function() const { return functions->intersect; }
     IntersectFn* any_hit_function() const {
-        return type->intersect_any != nullptr ? type->intersect_any : type->intersect;
+        return functions->intersect_any != nullptr ? functions->intersect_any
+                                                   : functions->intersect;
     }
     // Whether anything of the primitive lies along the ray in range.
     bool intersect_any(const Ray& ray, Interval range) const {
@@ -112,24 +129,24 @@ struct Shape {
         return any_hit_function()(data.get(), ray, range, scratch);
     }
     Vec3 normal(const Vec3& point, const Hit& hit) const {
-        return type->normal(data.get(), point, hit);
+        return functions->normal(data.get(), point, hit);
     }
-    Bounds bounds() const { return type->bounds(data.get()); }
+    Bounds bounds() const { return functions->bounds(data.get()); }
     bool has_inside() const {
-        return type->inside != nullptr &&
-               (type->has_inside == nullptr || type->has_inside(data.get()));
+        return functions->inside != nullptr &&
+               (functions->has_inside == nullptr || functions->has_inside(data.get()));
     }
     // Only meaningful when has_inside().
-    bool inside(const Vec3& point) const { return type->inside(data.get(), point); }
+    bool inside(const Vec3& point) const { return functions->inside(data.get(), point); }
     // The nearest crossing of the solid's boundary in range (only when has_inside()).
     bool cross(const Ray& ray, Interval range, Crossing& crossing) const;
     // Every crossing beyond t_min, and whether the ray starts inside (only when has_inside()).
     bool collect(const Ray& ray, double t_min, Crossings& out) const;
     Bounds solid_bounds() const {
-        return type->solid_bounds != nullptr ? type->solid_bounds(data.get()) : bounds();
+        return functions->solid_bounds != nullptr ? functions->solid_bounds(data.get()) : bounds();
     }
     bool carries_surfaces() const {
-        return type->carries_surfaces != nullptr && type->carries_surfaces(data.get());
+        return functions->carries_surfaces != nullptr && functions->carries_surfaces(data.get());
     }
 };
 

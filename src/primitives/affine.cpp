@@ -5,19 +5,19 @@
 #include <cmath>
 #include <optional>
 
-#include "scene/affine_frame.h"
-#include "primitives/primitives.h"
+#include "rt/primitive.h"
 #include "rt/reader.h"
+#include "scene/affine_frame.h"
 
 namespace rt::affine {
 
 namespace {
+
 struct Affine {
     AffineFrame frame;
     Shape inner;
     Bounds box;  // the world box of the inner primitive's box, computed once
 };
-}  // namespace
 
 ShapeData read(SceneReader& reader) {
     const AffineFrame frame = read_affine_frame(reader, "affine");
@@ -26,7 +26,6 @@ ShapeData read(SceneReader& reader) {
     return std::make_shared<const Affine>(Affine{frame, std::move(inner), box});
 }
 
-namespace {
 // A world ray carried into the inner primitive's frame: M(o - O) + t' Md/|Md|, where the
 // local distance t' is t |Md|, so a range scales by the same factor.
 struct LocalRay {
@@ -41,7 +40,6 @@ std::optional<LocalRay> to_local(const Affine& a, const Ray& ray) {
     if (!(scale > 0) || !std::isfinite(scale)) return std::nullopt;
     return LocalRay{{a.frame.to_local_point(ray.origin), local_direction / scale}, scale};
 }
-}  // namespace
 
 bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
     const auto& a = *static_cast<const Affine*>(shape);
@@ -106,5 +104,20 @@ bool inside(const void* shape, const Vec3& point) {
     const auto& a = *static_cast<const Affine*>(shape);
     return a.inner.has_inside() && a.inner.inside(a.frame.to_local_point(point));
 }
+
+}  // namespace
+
+// Solid, and carrying surfaces, exactly when its inner primitive is, so it says so per
+// instance; it forwards everything else to the inner primitive too.
+extern const PrimitiveFunctions functions{.read = read,
+                                          .intersect = intersect,
+                                          .normal = normal,
+                                          .bounds = bounds,
+                                          .inside = inside,
+                                          .has_inside = has_inside,
+                                          .intersect_any = intersect_any,
+                                          .carries_surfaces = carries_surfaces,
+                                          .collect = collect,
+                                          .solid_bounds = solid_bounds};
 
 }  // namespace rt::affine

@@ -1,10 +1,12 @@
 // Annulus (ID 4): centre; normal; outer radius; inner radius. A disk with a hole
 // (section 2.4 of the original).
 #include "primitives/planar.h"
-#include "primitives/primitives.h"
+#include "rt/primitive.h"
 #include "rt/reader.h"
 
 namespace rt::annulus {
+
+namespace {
 
 ShapeData read(SceneReader& reader) {
     const Vec3 centre = reader.vec3("annulus centre");
@@ -27,5 +29,10 @@ Vec3 normal(const void* shape, const Vec3&, const Hit&) {
 }
 
 Bounds bounds(const void* shape) { return static_cast<const Ring*>(shape)->bounds(); }
+
+}  // namespace
+
+extern const PrimitiveFunctions functions{
+    .read = read, .intersect = intersect, .normal = normal, .bounds = bounds};
 
 }  // namespace rt::annulus

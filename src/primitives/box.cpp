@@ -3,7 +3,7 @@
 #include <array>
 #include <string>
 
-#include "primitives/primitives.h"
+#include "rt/primitive.h"
 #include "rt/reader.h"
 
 namespace rt::box {
@@ -17,8 +17,6 @@ struct Box {
 // Hit.part names the face, so the normal is exact even where faces meet: 2k is the face
 // x_k = min_k and 2k + 1 the face x_k = max_k.
 constexpr int face(int axis, bool at_max) { return 2 * axis + (at_max ? 1 : 0); }
-
-}  // namespace
 
 ShapeData read(SceneReader& reader) {
     const Vec3 min = reader.vec3("box min corner");
@@ -89,5 +87,10 @@ bool inside(const void* shape, const Vec3& point) {
     return point.x > b.min.x && point.x < b.max.x && point.y > b.min.y && point.y < b.max.y &&
            point.z > b.min.z && point.z < b.max.z;
 }
+
+}  // namespace
+
+extern const PrimitiveFunctions functions{
+    .read = read, .intersect = intersect, .normal = normal, .bounds = bounds, .inside = inside};
 
 }  // namespace rt::box

@@ -4,19 +4,19 @@
 #include <cmath>
 
 #include "primitives/axial.h"
-#include "primitives/primitives.h"
+#include "rt/primitive.h"
 #include "rt/reader.h"
 
 namespace rt::cone {
 
 namespace {
+
 struct Cone {
     AxialExtent extent;
     double cos2;               // alpha^2, the original's one precomputed value
     double sin2;               // 1 - alpha^2
     double radius_per_height;  // tan(half-angle), for the bounds
 };
-}  // namespace
 
 ShapeData read(SceneReader& reader) {
     const Location alpha_at = reader.next_location();
@@ -69,5 +69,10 @@ Bounds bounds(const void* shape) {
     return axial_bounds(k.extent, std::fabs(k.extent.near) * k.radius_per_height,
                         std::fabs(k.extent.far) * k.radius_per_height);
 }
+
+}  // namespace
+
+extern const PrimitiveFunctions functions{
+    .read = read, .intersect = intersect, .normal = normal, .bounds = bounds};
 
 }  // namespace rt::cone

@@ -10,7 +10,7 @@
 #include <algorithm>
 #include <string>
 
-#include "primitives/primitives.h"
+#include "rt/primitive.h"
 #include "rt/reader.h"
 
 namespace rt::csg {
@@ -117,8 +117,6 @@ Crossing tagged(Crossing crossing, const Operand& operand, unsigned which) {
     return crossing;
 }
 
-}  // namespace
-
 ShapeData read_union(SceneReader& reader) { return read(reader, Operation::unite); }
 ShapeData read_intersection(SceneReader& reader) { return read(reader, Operation::intersect); }
 ShapeData read_difference(SceneReader& reader) { return read(reader, Operation::subtract); }
@@ -201,5 +199,34 @@ bool inside(const void* shape, const Vec3& point) {
 }
 
 bool carries_surfaces(const void*) { return true; }
+
+}  // namespace
+
+// Composites: their operands bring their own surfaces, and the boundary is found from
+// the operands' crossings.
+extern const PrimitiveFunctions union_functions{.read = read_union,
+                                                .intersect = intersect,
+                                                .normal = normal,
+                                                .bounds = bounds,
+                                                .inside = inside,
+                                                .carries_surfaces = carries_surfaces,
+                                                .collect = collect,
+                                                .solid_bounds = solid_bounds};
+extern const PrimitiveFunctions intersection_functions{.read = read_intersection,
+                                                       .intersect = intersect,
+                                                       .normal = normal,
+                                                       .bounds = bounds,
+                                                       .inside = inside,
+                                                       .carries_surfaces = carries_surfaces,
+                                                       .collect = collect,
+                                                       .solid_bounds = solid_bounds};
+extern const PrimitiveFunctions difference_functions{.read = read_difference,
+                                                     .intersect = intersect,
+                                                     .normal = normal,
+                                                     .bounds = bounds,
+                                                     .inside = inside,
+                                                     .carries_surfaces = carries_surfaces,
+                                                     .collect = collect,
+                                                     .solid_bounds = solid_bounds};
 
 }  // namespace rt::csg

@@ -4,18 +4,18 @@
 #include <cmath>
 
 #include "primitives/axial.h"
-#include "primitives/primitives.h"
+#include "rt/primitive.h"
 #include "rt/reader.h"
 
 namespace rt::cylinder {
 
 namespace {
+
 struct Cylinder {
     AxialExtent extent;
     double radius;
     double radius_squared;
 };
-}  // namespace
 
 ShapeData read(SceneReader& reader) {
     const double radius = reader.positive("cylinder radius");
@@ -58,5 +58,10 @@ Bounds bounds(const void* shape) {
     const auto& cyl = *static_cast<const Cylinder*>(shape);
     return axial_bounds(cyl.extent, cyl.radius, cyl.radius);
 }
+
+}  // namespace
+
+extern const PrimitiveFunctions functions{
+    .read = read, .intersect = intersect, .normal = normal, .bounds = bounds};
 
 }  // namespace rt::cylinder

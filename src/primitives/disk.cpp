@@ -1,10 +1,12 @@
 // Disk (ID 3): centre; normal; radius. The plane through the centre, kept within the radius
 // (section 2.4 of the original).
 #include "primitives/planar.h"
-#include "primitives/primitives.h"
+#include "rt/primitive.h"
 #include "rt/reader.h"
 
 namespace rt::disk {
+
+namespace {
 
 ShapeData read(SceneReader& reader) {
     const Vec3 centre = reader.vec3("disk centre");
@@ -22,5 +24,10 @@ Vec3 normal(const void* shape, const Vec3&, const Hit&) {
 }
 
 Bounds bounds(const void* shape) { return static_cast<const Ring*>(shape)->bounds(); }
+
+}  // namespace
+
+extern const PrimitiveFunctions functions{
+    .read = read, .intersect = intersect, .normal = normal, .bounds = bounds};
 
 }  // namespace rt::disk

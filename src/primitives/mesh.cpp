@@ -15,9 +15,9 @@
 #include <string_view>
 #include <vector>
 
-#include "primitives/primitives.h"
-#include "primitives/watertight.h"
 #include "accel/bvh.h"
+#include "primitives/watertight.h"
+#include "rt/primitive.h"
 #include "rt/reader.h"
 
 namespace rt::mesh {
@@ -90,8 +90,6 @@ std::uint32_t read_index(SceneReader& reader, long triangle, long vertex_count) 
                             reader.last_number_text());
     return static_cast<std::uint32_t>(value);
 }
-
-}  // namespace
 
 ShapeData read(SceneReader& reader) {
     const long vertex_count = reader.whole("mesh vertex count", 3, kMaxCount);
@@ -197,5 +195,14 @@ Vec3 normal(const void* shape, const Vec3&, const Hit& hit) {
 }
 
 Bounds bounds(const void* shape) { return static_cast<const Mesh*>(shape)->box; }
+
+}  // namespace
+
+// A shadow ray stops at the first triangle it meets.
+extern const PrimitiveFunctions functions{.read = read,
+                                          .intersect = intersect,
+                                          .normal = normal,
+                                          .bounds = bounds,
+                                          .intersect_any = intersect_any};
 
 }  // namespace rt::mesh

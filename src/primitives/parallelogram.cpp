@@ -1,10 +1,12 @@
 // Parallelogram (ID 6): vertex v; edge a; edge b. Points v + alpha a + beta b with
 // 0 <= alpha, beta <= 1 (section 2.6 of the original).
 #include "primitives/planar.h"
-#include "primitives/primitives.h"
+#include "rt/primitive.h"
 #include "rt/reader.h"
 
 namespace rt::parallelogram {
+
+namespace {
 
 ShapeData read(SceneReader& reader) {
     const Location at = reader.next_location();
@@ -30,5 +32,10 @@ Vec3 normal(const void* shape, const Vec3&, const Hit&) {
 }
 
 Bounds bounds(const void* shape) { return static_cast<const EdgePatch*>(shape)->box; }
+
+}  // namespace
+
+extern const PrimitiveFunctions functions{
+    .read = read, .intersect = intersect, .normal = normal, .bounds = bounds};
 
 }  // namespace rt::parallelogram

@@ -3,10 +3,12 @@
 #include <cmath>
 
 #include "primitives/planar.h"
-#include "primitives/primitives.h"
+#include "rt/primitive.h"
 #include "rt/reader.h"
 
 namespace rt::plane {
+
+namespace {
 
 ShapeData read(SceneReader& reader) {
     const double d = reader.number("plane D");
@@ -37,5 +39,10 @@ bool inside(const void* shape, const Vec3& point) {
     const auto& p = *static_cast<const Plane*>(shape);
     return dot(p.normal, point) < p.offset;
 }
+
+}  // namespace
+
+extern const PrimitiveFunctions functions{
+    .read = read, .intersect = intersect, .normal = normal, .bounds = bounds, .inside = inside};
 
 }  // namespace rt::plane

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "primitives/planar.h"
-#include "primitives/primitives.h"
+#include "rt/primitive.h"
 #include "rt/reader.h"
 
 namespace rt::polygon {
@@ -61,8 +61,6 @@ bool even_odd_inside(const std::vector<Point2>& outline, Point2 p) {
     }
     return inside;
 }
-
-}  // namespace
 
 ShapeData read(SceneReader& reader) {
     const long count = reader.whole("polygon vertex count", 3, kMaxVertices);
@@ -139,5 +137,10 @@ Vec3 normal(const void* shape, const Vec3&, const Hit&) {
 }
 
 Bounds bounds(const void* shape) { return static_cast<const Polygon*>(shape)->box; }
+
+}  // namespace
+
+extern const PrimitiveFunctions functions{
+    .read = read, .intersect = intersect, .normal = normal, .bounds = bounds};
 
 }  // namespace rt::polygon

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <string>
 
-#include "primitives/primitives.h"
+#include "rt/primitive.h"
 #include "rt/reader.h"
 
 namespace rt::quadric {
@@ -173,8 +173,6 @@ Bounds solid_box(const Extent& extent) {
     return extent.box;
 }
 
-}  // namespace
-
 ShapeData read(SceneReader& reader) {
     const Location first = reader.next_location();
     std::array<double, 10> k{};
@@ -272,5 +270,16 @@ bool inside(const void* shape, const Vec3& point) {
     const auto& s = *static_cast<const Quadric*>(shape);
     return f_at(s, point - s.p0) < 0;
 }
+
+}  // namespace
+
+// Its solid f < 0 is not clipped by its box, so it reports invisible crossings too.
+extern const PrimitiveFunctions functions{.read = read,
+                                          .intersect = intersect,
+                                          .normal = normal,
+                                          .bounds = bounds,
+                                          .inside = inside,
+                                          .cross = cross,
+                                          .solid_bounds = solid_bounds};
 
 }  // namespace rt::quadric

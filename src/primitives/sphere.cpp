@@ -1,18 +1,18 @@
 // Sphere (ID 1): radius; centre. The points x with |x - c| = r (section 2.2 of the original).
 #include <cmath>
 
-#include "primitives/primitives.h"
+#include "rt/primitive.h"
 #include "rt/reader.h"
 
 namespace rt::sphere {
 
 namespace {
+
 struct Sphere {
     double radius;
     double radius_squared;  // precomputed, as the original suggests
     Vec3 centre;
 };
-}  // namespace
 
 ShapeData read(SceneReader& reader) {
     const double radius = reader.positive("sphere radius");
@@ -58,5 +58,10 @@ bool inside(const void* shape, const Vec3& point) {
     const auto& s = *static_cast<const Sphere*>(shape);
     return length_squared(point - s.centre) < s.radius_squared;
 }
+
+}  // namespace
+
+extern const PrimitiveFunctions functions{
+    .read = read, .intersect = intersect, .normal = normal, .bounds = bounds, .inside = inside};
 
 }  // namespace rt::sphere

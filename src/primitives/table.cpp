@@ -1,72 +1,53 @@
-// The table of primitive types. Adding a primitive is its source file, its declarations in
-// primitives.h and one row here. Columns left out of a row are nullptr (see primitive.h).
+// The table of primitive types. Adding a primitive is its source file, which defines
+// NAME::functions at its end, and two lines here: its declaration and its row.
 #include <cmath>
 
+#include "rt/primitive.h"
 #include "scene/id_table.h"
-#include "primitives/primitives.h"
 
 namespace rt {
+
+// Each is defined at the end of its primitive's source file; one line each, beside the rows.
+// clang-format off
+namespace sphere { extern const PrimitiveFunctions functions; }
+namespace plane { extern const PrimitiveFunctions functions; }
+namespace disk { extern const PrimitiveFunctions functions; }
+namespace annulus { extern const PrimitiveFunctions functions; }
+namespace triangle { extern const PrimitiveFunctions functions; }
+namespace parallelogram { extern const PrimitiveFunctions functions; }
+namespace affine { extern const PrimitiveFunctions functions; }
+namespace cone { extern const PrimitiveFunctions functions; }
+namespace cylinder { extern const PrimitiveFunctions functions; }
+namespace torus { extern const PrimitiveFunctions functions; }
+namespace polygon { extern const PrimitiveFunctions functions; }
+namespace box { extern const PrimitiveFunctions functions; }
+namespace quadric { extern const PrimitiveFunctions functions; }
+namespace mesh { extern const PrimitiveFunctions functions; }
+namespace csg { extern const PrimitiveFunctions union_functions; }
+namespace csg { extern const PrimitiveFunctions intersection_functions; }
+namespace csg { extern const PrimitiveFunctions difference_functions; }
+// clang-format on
 
 namespace {
 
 constexpr std::array kPrimitiveTypes{
-    PrimitiveType{.id = 1, .name = "sphere", .read = sphere::read, .intersect = sphere::intersect,
-                  .normal = sphere::normal, .bounds = sphere::bounds, .inside = sphere::inside},
-    PrimitiveType{.id = 2, .name = "plane", .read = plane::read, .intersect = plane::intersect,
-                  .normal = plane::normal, .bounds = plane::bounds, .inside = plane::inside},
-    PrimitiveType{.id = 3, .name = "disk", .read = disk::read, .intersect = disk::intersect,
-                  .normal = disk::normal, .bounds = disk::bounds},
-    PrimitiveType{.id = 4, .name = "annulus", .read = annulus::read,
-                  .intersect = annulus::intersect, .normal = annulus::normal,
-                  .bounds = annulus::bounds},
-    PrimitiveType{.id = 5, .name = "triangle", .read = triangle::read,
-                  .intersect = triangle::intersect, .normal = triangle::normal,
-                  .bounds = triangle::bounds},
-    PrimitiveType{.id = 6, .name = "parallelogram", .read = parallelogram::read,
-                  .intersect = parallelogram::intersect, .normal = parallelogram::normal,
-                  .bounds = parallelogram::bounds},
-    // Solid, and carrying surfaces, exactly when its inner primitive is, so it says so per
-    // instance; it forwards everything else to the inner primitive too.
-    PrimitiveType{.id = 7, .name = "affine", .read = affine::read, .intersect = affine::intersect,
-                  .normal = affine::normal, .bounds = affine::bounds, .inside = affine::inside,
-                  .has_inside = affine::has_inside, .intersect_any = affine::intersect_any,
-                  .carries_surfaces = affine::carries_surfaces, .collect = affine::collect,
-                  .solid_bounds = affine::solid_bounds},
-    PrimitiveType{.id = 8, .name = "cone", .read = cone::read, .intersect = cone::intersect,
-                  .normal = cone::normal, .bounds = cone::bounds},
-    PrimitiveType{.id = 9, .name = "cylinder", .read = cylinder::read,
-                  .intersect = cylinder::intersect, .normal = cylinder::normal,
-                  .bounds = cylinder::bounds},
-    PrimitiveType{.id = 10, .name = "torus", .read = torus::read, .intersect = torus::intersect,
-                  .normal = torus::normal, .bounds = torus::bounds, .inside = torus::inside},
-    PrimitiveType{.id = 11, .name = "polygon", .read = polygon::read,
-                  .intersect = polygon::intersect, .normal = polygon::normal,
-                  .bounds = polygon::bounds},
-    PrimitiveType{.id = 12, .name = "box", .read = box::read, .intersect = box::intersect,
-                  .normal = box::normal, .bounds = box::bounds, .inside = box::inside},
-    // Its solid f < 0 is not clipped by its box, so it reports invisible crossings too.
-    PrimitiveType{.id = 13, .name = "quadric", .read = quadric::read,
-                  .intersect = quadric::intersect, .normal = quadric::normal,
-                  .bounds = quadric::bounds, .inside = quadric::inside, .cross = quadric::cross,
-                  .solid_bounds = quadric::solid_bounds},
-    // A shadow ray stops at the first triangle it meets.
-    PrimitiveType{.id = 14, .name = "mesh", .read = mesh::read, .intersect = mesh::intersect,
-                  .normal = mesh::normal, .bounds = mesh::bounds,
-                  .intersect_any = mesh::intersect_any},
-    // Composites: their operands bring their own surfaces, and the boundary is found from
-    // the operands' crossings.
-    PrimitiveType{.id = 20, .name = "union", .read = csg::read_union, .intersect = csg::intersect,
-                  .normal = csg::normal, .bounds = csg::bounds, .inside = csg::inside,
-                  .carries_surfaces = csg::carries_surfaces, .collect = csg::collect,
-                  .solid_bounds = csg::solid_bounds},
-    PrimitiveType{.id = 21, .name = "intersection", .read = csg::read_intersection,
-                  .intersect = csg::intersect, .normal = csg::normal, .bounds = csg::bounds,
-                  .inside = csg::inside, .carries_surfaces = csg::carries_surfaces,
-                  .collect = csg::collect, .solid_bounds = csg::solid_bounds},
-    PrimitiveType{.id = 22, .name = "difference", .read = csg::read_difference,
-                  .intersect = csg::intersect, .normal = csg::normal, .bounds = csg::bounds,
-                  .inside = csg::inside, .carries_surfaces = csg::carries_surfaces,
-                  .collect = csg::collect, .solid_bounds = csg::solid_bounds},
+    PrimitiveType{1, "sphere", &sphere::functions},
+    PrimitiveType{2, "plane", &plane::functions},
+    PrimitiveType{3, "disk", &disk::functions},
+    PrimitiveType{4, "annulus", &annulus::functions},
+    PrimitiveType{5, "triangle", &triangle::functions},
+    PrimitiveType{6, "parallelogram", &parallelogram::functions},
+    PrimitiveType{7, "affine", &affine::functions},
+    PrimitiveType{8, "cone", &cone::functions},
+    PrimitiveType{9, "cylinder", &cylinder::functions},
+    PrimitiveType{10, "torus", &torus::functions},
+    PrimitiveType{11, "polygon", &polygon::functions},
+    PrimitiveType{12, "box", &box::functions},
+    PrimitiveType{13, "quadric", &quadric::functions},
+    PrimitiveType{14, "mesh", &mesh::functions},
+    PrimitiveType{20, "union", &csg::union_functions},
+    PrimitiveType{21, "intersection", &csg::intersection_functions},
+    PrimitiveType{22, "difference", &csg::difference_functions},
 };
 
 static_assert(strictly_sorted_by_id(kPrimitiveTypes), "rows sorted by ID, each ID once");
@@ -78,7 +59,7 @@ std::span<const PrimitiveType> primitive_types() { return kPrimitiveTypes; }
 const PrimitiveType* find_primitive_type(int id) { return find_by_id(kPrimitiveTypes, id); }
 
 bool Shape::cross(const Ray& ray, Interval range, Crossing& crossing) const {
-    if (type->cross != nullptr) return type->cross(data.get(), ray, range, crossing);
+    if (functions->cross != nullptr) return functions->cross(data.get(), ray, range, crossing);
     // Every crossing of an ordinary solid is a visible hit; the outward normal says which way.
     Hit hit;
     if (!intersect(ray, range, hit)) return false;
@@ -99,7 +80,7 @@ double step_past(double t) {
 }
 
 bool Shape::collect(const Ray& ray, double t_min, Crossings& out) const {
-    if (type->collect != nullptr) return type->collect(data.get(), ray, t_min, out);
+    if (functions->collect != nullptr) return functions->collect(data.get(), ray, t_min, out);
     // A simple solid: step from one crossing to the next.
     Crossing crossing;
     double from = t_min;

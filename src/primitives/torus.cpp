@@ -10,8 +10,8 @@
 #include <cmath>
 
 #include "primitives/planar.h"
-#include "primitives/primitives.h"
 #include "primitives/polynomial.h"
+#include "rt/primitive.h"
 #include "rt/reader.h"
 
 namespace rt::torus {
@@ -86,8 +86,6 @@ double polish(const Torus& t, const Vec3& o, const Vec3& d, double s) {
     }
     return s;
 }
-
-}  // namespace
 
 ShapeData read(SceneReader& reader) {
     const Vec3 centre = reader.vec3("torus centre");
@@ -175,5 +173,10 @@ bool inside(const void* shape, const Vec3& point) {
     const auto& t = *static_cast<const Torus*>(shape);
     return tube_factor(t, tube_coordinates(t, point - t.centre)) < 0;
 }
+
+}  // namespace
+
+extern const PrimitiveFunctions functions{
+    .read = read, .intersect = intersect, .normal = normal, .bounds = bounds, .inside = inside};
 
 }  // namespace rt::torus

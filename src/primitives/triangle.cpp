@@ -4,19 +4,19 @@
 // that share an edge (the same two vertices, to the last bit) leave no gap along it, and a
 // mesh and the same triangles written separately are hit at the same distances.
 #include "primitives/planar.h"
-#include "primitives/primitives.h"
 #include "primitives/watertight.h"
+#include "rt/primitive.h"
 #include "rt/reader.h"
 
 namespace rt::triangle {
 
 namespace {
+
 struct Triangle {
     std::array<Vec3, 3> sorted;  // the vertices in lexicographic order, for TriangleRay
     Vec3 normal;                 // unit, along (v1 - v0) x (v2 - v0) as written
     Bounds box;
 };
-}  // namespace
 
 ShapeData read(SceneReader& reader) {
     const Location at = reader.next_location();
@@ -52,5 +52,10 @@ Vec3 normal(const void* shape, const Vec3&, const Hit&) {
 }
 
 Bounds bounds(const void* shape) { return static_cast<const Triangle*>(shape)->box; }
+
+}  // namespace
+
+extern const PrimitiveFunctions functions{
+    .read = read, .intersect = intersect, .normal = normal, .bounds = bounds};
 
 }  // namespace rt::triangle

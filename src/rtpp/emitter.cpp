@@ -41,6 +41,16 @@ class Fields {
             if (std::string_view(f.spec->name) == name) found.push_back(&f);
         return found;
     }
+    // The values of a repeated field of vertices, which must number from min to max.
+    std::vector<const FieldValue*> count(const char* name, std::size_t min, std::size_t max) const {
+        const auto list = all(name);
+        if (list.size() < min || list.size() > max)
+            fail(object_.pos,
+                 std::string(object_.kind->keyword) + " needs " +
+                     (min == max ? std::to_string(min) : "at least " + std::to_string(min)) +
+                     " vertices, got " + std::to_string(list.size()));
+        return list;
+    }
     // Exactly one of two alternative fields.
     const char* one_of(const char* a, const char* b) const {
         if (has(a) && has(b))
@@ -144,18 +154,16 @@ void Emitter::place_in(const ObjectValue& object, const Frame& parent) {
         case Category::csg:
             start_line(object.pos);
             shape(object, placed);
-            if (category == Category::primitive) surface_slot(object);
             return;
         case Category::light:
             start_line(object.pos);
             if (!placed.is_identity()) frame(112, placed);
-            light(object);
+            numbers(object);
             return;
         case Category::ambient:
             if (!placed.is_identity()) fail(object.pos, "an ambient light cannot be transformed");
             start_line(object.pos);
-            number(103);
-            vector(Fields(object).vector("intensity"));
+            numbers(object);
             return;
         case Category::camera:
         case Category::viewer:
@@ -190,11 +198,58 @@ void Emitter::finish(SourcePos end) {
 void Emitter::shape(const ObjectValue& object, const Frame& placed) {
     mark(object.pos);
     if (!placed.is_identity()) frame(7, placed);
-    number(object.kind->id);
-    if (object.kind->category == Category::csg)
-        csg_operands(object);
-    else
-        primitive_numbers(object);
+    numbers(object);
+}
+
+// The kind's ID, then its fields in the contract's order, each as its row says; a composite's
+// operands instead.
+void Emitter::numbers(const ObjectValue& object) {
+    const Fields f(object);
+    int id = object.kind->id;
+    for (const FieldSpec& spec : object.kind->fields)
+        if (spec.id != 0 && f.number(spec.name) != 0) id = spec.id;
+    number(id);
+    if (object.kind->category == Category::csg) return csg_operands(object);
+    for (const FieldSpec& spec : object.kind->fields) field(object, spec);
+}
+
+void Emitter::field(const ObjectValue& object, const FieldSpec& spec) {
+    const Fields f(object);
+    switch (spec.write) {
+        case Write::number:
+            return number(f.number(spec.name));
+        case Write::vector:
+            return vector(f.vector(spec.name));
+        case Write::surface:
+            return surface(*f.value(spec.name).object);
+        case Write::slot:
+            return surface_slot(object);
+        case Write::file:
+            return file(object, spec.name);
+        case Write::size: {
+            const rt::Vec3 size = f.vector(spec.name);
+            number(size.x);
+            number(size.y);
+            return;
+        }
+        case Write::cosine_or_degrees: {
+            const bool cosine = f.one_of(spec.name, spec.other) == spec.name;
+            return number(cosine ? f.number(spec.name) : cos_degrees(f.number(spec.other)));
+        }
+        case Write::three:
+            for (const FieldValue* v : f.count(spec.name, 3, 3)) vector(v->value.vector);
+            return;
+        case Write::counted: {
+            const auto list = f.count(spec.name, 3, static_cast<std::size_t>(limits_.list_items));
+            number(static_cast<double>(list.size()));
+            for (const FieldValue* v : list) vector(v->value.vector);
+            return;
+        }
+        case Write::indexed:
+            return indexed(object, spec);
+        case Write::none:
+            return;
+    }
 }
 
 // A union or intersection of more than two is nested to the right (A op (B op C)); a
@@ -210,99 +265,36 @@ void Emitter::csg_operands(const ObjectValue& object) {
             fail(o.pos, std::string("a ") + o.kind->keyword + " cannot be part of a " +
                             object.kind->keyword);
         shape(o, o.transform);
-        if (c == Category::primitive) surface_slot(o);
     };
-    const bool difference = object.kind->id == 22;
     for (std::size_t i = 0; i + 1 < operands.size(); ++i) {
         operand(*operands[i]);
-        if (i + 2 < operands.size()) number(difference ? 20 : object.kind->id);
+        if (i + 2 < operands.size()) number(object.kind->rest_id);
     }
     operand(*operands.back());
 }
 
-void Emitter::primitive_numbers(const ObjectValue& object) {
+// A mesh: the counts, the vertices, then the triangles' vertex indices, each checked.
+void Emitter::indexed(const ObjectValue& object, const FieldSpec& spec) {
     const Fields f(object);
-    const std::string_view kind = object.kind->keyword;
-    const auto vertices = [&](std::size_t min, std::size_t max) {
-        const auto list = f.all("vertex");
-        if (list.size() < min || list.size() > max)
-            fail(object.pos,
-                 std::string(kind) + " needs " +
-                     (min == max ? std::to_string(min) : "at least " + std::to_string(min)) +
-                     " vertices, got " + std::to_string(list.size()));
-        return list;
-    };
-    if (kind == "sphere") {
-        number(f.number("radius"));
-        vector(f.vector("centre"));
-    } else if (kind == "plane") {
-        number(f.number("distance"));
-        vector(f.vector("normal"));
-    } else if (kind == "disk") {
-        vector(f.vector("centre"));
-        vector(f.vector("normal"));
-        number(f.number("radius"));
-    } else if (kind == "annulus") {
-        vector(f.vector("centre"));
-        vector(f.vector("normal"));
-        number(f.number("outer"));
-        number(f.number("inner"));
-    } else if (kind == "triangle") {
-        for (const FieldValue* v : vertices(3, 3)) vector(v->value.vector);
-    } else if (kind == "parallelogram") {
-        vector(f.vector("corner"));
-        vector(f.vector("a"));
-        vector(f.vector("b"));
-    } else if (kind == "cone") {
-        const char* which = f.one_of("alpha", "angle");
-        number(which == std::string_view("alpha") ? f.number("alpha")
-                                                  : cos_degrees(f.number("angle")));
-        number(f.number("start"));
-        number(f.number("finish"));
-        vector(f.vector("apex"));
-        vector(f.vector("axis"));
-    } else if (kind == "cylinder") {
-        number(f.number("radius"));
-        number(f.number("start"));
-        number(f.number("finish"));
-        vector(f.vector("origin"));
-        vector(f.vector("axis"));
-    } else if (kind == "torus") {
-        vector(f.vector("centre"));
-        vector(f.vector("axis"));
-        number(f.number("major"));
-        number(f.number("minor"));
-    } else if (kind == "polygon") {
-        const auto list = vertices(3, static_cast<std::size_t>(limits_.list_items));
-        number(static_cast<double>(list.size()));
-        for (const FieldValue* v : list) vector(v->value.vector);
-    } else if (kind == "box") {
-        vector(f.vector("min"));
-        vector(f.vector("max"));
-    } else if (kind == "quadric") {
-        for (const char* c : {"xx", "yy", "zz", "xy", "xz", "yz", "x", "y", "z", "constant"})
-            number(f.number(c));
-        vector(f.vector("min"));
-        vector(f.vector("max"));
-    } else if (kind == "mesh") {
-        const auto list = f.all("vertex");
-        const auto triangles = f.all("triangle");
-        if (list.empty() || triangles.empty())
-            fail(object.pos, "mesh needs at least one vertex and one triangle");
-        number(static_cast<double>(list.size()));
-        number(static_cast<double>(triangles.size()));
-        for (const FieldValue* v : list) vector(v->value.vector);
-        const double count = static_cast<double>(list.size());
-        for (const FieldValue* t : triangles) {
-            for (int i = 0; i < 3; ++i) {
-                const double index = t->value.vector[i];
-                if (index != std::floor(index) || index < 0 || index >= count)
-                    fail(t->pos, "mesh triangle indices must be whole numbers from 0 to " +
-                                     std::to_string(list.size() - 1) + ", got " +
-                                     std::to_string(index));
-            }
-            vector(t->value.vector);
+    const auto list = f.all(spec.name);
+    const auto triangles = f.all(spec.other);
+    if (list.empty() || triangles.empty())
+        fail(object.pos, std::string(object.kind->keyword) + " needs at least one " + spec.name +
+                             " and one " + spec.other);
+    number(static_cast<double>(list.size()));
+    number(static_cast<double>(triangles.size()));
+    for (const FieldValue* v : list) vector(v->value.vector);
+    const double count = static_cast<double>(list.size());
+    for (const FieldValue* t : triangles) {
+        for (int i = 0; i < 3; ++i) {
+            const double index = t->value.vector[i];
+            if (index != std::floor(index) || index < 0 || index >= count)
+                fail(t->pos, std::string(object.kind->keyword) + " " + spec.other +
+                                 " indices must be whole numbers from 0 to " +
+                                 std::to_string(list.size() - 1) + ", got " +
+                                 std::to_string(index));
         }
+        vector(t->value.vector);
     }
 }
 
@@ -316,104 +308,56 @@ void Emitter::surface_slot(const ObjectValue& object) {
 
 void Emitter::surface(const ObjectValue& s) {
     if (!s.transform.is_identity()) frame(111, s.transform);
-    const Fields f(s);
-    const std::string_view kind = s.kind->keyword;
-    number(s.kind->id);
-    if (kind == "surface") {
-        vector(f.vector("colour"));
-        for (const char* name : {"ks", "ke", "kd", "kt", "ior"}) number(f.number(name));
-    } else if (kind == "glass") {
-        vector(f.vector("colour"));
-        for (const char* name : {"ks", "ke", "kd", "ior"}) number(f.number(name));
-        vector(f.vector("absorption"));
-    } else if (kind == "checker") {
-        number(f.number("cell"));
-        surface(*f.value("a").object);
-        surface(*f.value("b").object);
-    } else if (kind == "image") {
-        vector(f.vector("origin"));
-        vector(f.vector("u"));
-        vector(f.vector("v"));
-        // Relative to the file that names it, written relative to where rtpp runs: where rt
-        // reading the output from a pipe looks for it.
-        const std::filesystem::path written(f.value("file").text);
-        const SourcePos at = f.pos_of("file");
-        const std::string path =
-            written.is_absolute()
-                ? written.string()
-                : (files_[at.file].path.parent_path() / written).lexically_normal().string();
-        if (path.find_first_of("\"\n") != std::string::npos)
-            fail(f.pos_of("file"), "an image file name cannot contain '\"' or a newline");
-        word("\"" + path + "\"");
-        surface(*f.value("base").object);
-    }
+    numbers(s);
 }
 
-void Emitter::light(const ObjectValue& object) {
+// Relative to the file that names it, written relative to where rtpp runs: where rt reading
+// the output from a pipe looks for it.
+void Emitter::file(const ObjectValue& object, const char* name) {
     const Fields f(object);
-    const std::string_view kind = object.kind->keyword;
-    if (kind == "point_light") {
-        number(f.number("falloff") != 0 ? 101 : 104);
-        vector(f.vector("position"));
-        vector(f.vector("intensity"));
-    } else if (kind == "spot_light") {
-        number(109);
-        vector(f.vector("position"));
-        vector(f.vector("direction"));
-        const char* which = f.one_of("cos_cutoff", "cutoff_angle");
-        number(which == std::string_view("cos_cutoff") ? f.number("cos_cutoff")
-                                                       : cos_degrees(f.number("cutoff_angle")));
-        number(f.number("exponent"));
-        vector(f.vector("intensity"));
-    } else if (kind == "sphere_light") {
-        number(110);
-        number(f.number("samples"));
-        vector(f.vector("centre"));
-        number(f.number("radius"));
-        vector(f.vector("intensity"));
-    } else if (kind == "directional_light") {
-        number(113);
-        vector(f.vector("direction"));
-        vector(f.vector("intensity"));
-    }
+    const std::filesystem::path written(f.value(name).text);
+    const SourcePos at = f.pos_of(name);
+    const std::string path =
+        written.is_absolute()
+            ? written.string()
+            : (files_[at.file].path.parent_path() / written).lexically_normal().string();
+    if (path.find_first_of("\"\n") != std::string::npos)
+        fail(at, "an image file name cannot contain '\"' or a newline");
+    word("\"" + path + "\"");
 }
 
+// The viewer's numbers as they are, or a camera's computed from all its fields together. The
+// size is asked for first.
 void Emitter::camera(const ObjectValue& object) {
     const Fields f(object);
     const rt::Vec3 size = f.vector("size");
-    number(102);
-    if (object.kind->category == Category::viewer) {
-        vector(f.vector("eye"));
-        vector(f.vector("look_at"));
-        vector(f.vector("x"));
-        vector(f.vector("y"));
+    if (object.kind->category == Category::viewer) return numbers(object);
+    number(object.kind->id);
+    Camera c;
+    c.position = f.vector("position");
+    c.look_at = f.vector("look_at");
+    c.up = f.vector("up");
+    c.width = static_cast<int>(size.x);
+    c.height = static_cast<int>(size.y);
+    c.upright = f.number("upright") != 0;
+    if (f.one_of("fov", "half_width") == std::string_view("fov")) {
+        const double fov = f.number("fov");
+        if (!(fov > 0 && fov < 180))
+            fail(f.pos_of("fov"),
+                 "camera fov must be between 0 and 180 degrees, got " + std::to_string(fov));
+        c.half_width = tan_degrees(fov / 2);
     } else {
-        Camera c;
-        c.position = f.vector("position");
-        c.look_at = f.vector("look_at");
-        c.up = f.vector("up");
-        c.width = static_cast<int>(size.x);
-        c.height = static_cast<int>(size.y);
-        c.upright = f.number("upright") != 0;
-        if (f.one_of("fov", "half_width") == std::string_view("fov")) {
-            const double fov = f.number("fov");
-            if (!(fov > 0 && fov < 180))
-                fail(f.pos_of("fov"),
-                     "camera fov must be between 0 and 180 degrees, got " + std::to_string(fov));
-            c.half_width = tan_degrees(fov / 2);
-        } else {
-            c.half_width = f.number("half_width");
-            if (!(c.half_width > 0)) fail(f.pos_of("half_width"), "camera half_width must be > 0");
-        }
-        try {
-            const ViewerVectors v = viewer_vectors(c);
-            vector(c.position);
-            vector(c.look_at);
-            vector(v.x);
-            vector(v.y);
-        } catch (const std::invalid_argument& e) {
-            fail(object.pos, e.what());
-        }
+        c.half_width = f.number("half_width");
+        if (!(c.half_width > 0)) fail(f.pos_of("half_width"), "camera half_width must be > 0");
+    }
+    try {
+        const ViewerVectors v = viewer_vectors(c);
+        vector(c.position);
+        vector(c.look_at);
+        vector(v.x);
+        vector(v.y);
+    } catch (const std::invalid_argument& e) {
+        fail(object.pos, e.what());
     }
     number(size.x);
     number(size.y);

@@ -32,11 +32,13 @@ class Emitter {
     void frame(int id, const Frame& f);
 
     void shape(const ObjectValue& object, const Frame& frame);
-    void primitive_numbers(const ObjectValue& object);
+    void numbers(const ObjectValue& object);
+    void field(const ObjectValue& object, const FieldSpec& spec);
     void csg_operands(const ObjectValue& object);
+    void indexed(const ObjectValue& object, const FieldSpec& spec);
     void surface_slot(const ObjectValue& object);
     void surface(const ObjectValue& surface);
-    void light(const ObjectValue& object);
+    void file(const ObjectValue& object, const char* name);
     void camera(const ObjectValue& object);
 
     const SourceFiles& files_;

@@ -4,138 +4,116 @@ namespace rtpp {
 
 namespace {
 
-FieldSpec required(const char* name, FieldType type) { return {name, type, false, 0, {}, false}; }
-FieldSpec optional(const char* name, FieldType type) { return {name, type, false, 0, {}, false}; }
-FieldSpec with_default(const char* name, double value) {
-    return {name, FieldType::number, true, value, {}, false};
-}
-FieldSpec with_default(const char* name, FieldType type, rt::Vec3 value) {
-    return {name, type, true, 0, value, false};
-}
-FieldSpec list(const char* name) { return {name, FieldType::vector, false, 0, {}, true}; }
+using T = FieldType;
 
-// Required and optional fields look alike in the table; the emitter asks for each as it
-// writes it, and a missing field without a default is an error there. Fields that have an
-// alternative (a cone's alpha or angle) are optional here and checked by the emitter.
+// Fields without a default are checked by the emitter as it writes them: a missing one is an
+// error there, at the object.
+FieldSpec number(const char* name) { return {name, T::number, false, 0, {}, false, Write::number}; }
+FieldSpec number(const char* name, double fallback) {
+    return {name, T::number, true, fallback, {}, false, Write::number};
+}
+FieldSpec vector(const char* name) { return {name, T::vector, false, 0, {}, false, Write::vector}; }
+FieldSpec vector(const char* name, rt::Vec3 fallback) {
+    return {name, T::vector, true, 0, fallback, false, Write::vector};
+}
+FieldSpec colour(const char* name) { return {name, T::colour, false, 0, {}, false, Write::vector}; }
+FieldSpec colour(const char* name, rt::Vec3 fallback) {
+    return {name, T::colour, true, 0, fallback, false, Write::vector};
+}
+FieldSpec surface(const char* name) {
+    return {name, T::surface, false, 0, {}, false, Write::surface};
+}
+FieldSpec file(const char* name) { return {name, T::string, false, 0, {}, false, Write::file}; }
+FieldSpec size() { return {"size", T::size, false, 0, {}, false, Write::size}; }
+// One of a pair: a cosine, or the angle in degrees (`degrees`) whose cosine is written.
+FieldSpec cosine(const char* name, const char* degrees) {
+    return {name, T::number, false, 0, {}, false, Write::cosine_or_degrees, degrees};
+}
+// The other of a pair, written by the first (or, for the camera, read with the others).
+FieldSpec alternative(const char* name) {
+    return {name, T::number, false, 0, {}, false, Write::none};
+}
+// False unless set; when true, the kind writes `id` instead of its own.
+FieldSpec flag(const char* name, int id = 0) {
+    return {name, T::flag, true, 0, {}, false, Write::none, nullptr, id};
+}
+// Each statement adds one vector.
+FieldSpec list(const char* name, Write write, const char* other = nullptr) {
+    return {name, T::vector, false, 0, {}, true, write, other};
+}
+
+// Every primitive takes a surface last: its own, or the default one.
+Kind primitive(const char* keyword, int id, std::vector<FieldSpec> fields,
+               const char* listed = nullptr) {
+    fields.push_back({"surface", T::surface, false, 0, {}, false, Write::slot});
+    return {keyword, id, Category::primitive, std::move(fields), listed};
+}
+Kind kind(const char* keyword, int id, Category category, std::vector<FieldSpec> fields) {
+    return {keyword, id, category, std::move(fields)};
+}
+Kind composite(const char* keyword, int id, int rest_id) {
+    return {keyword, id, Category::csg, {}, nullptr, rest_id};
+}
+
+// One row per kind, its fields in the order the contract writes them.
 std::vector<Kind> make_kinds() {
-    using T = FieldType;
     const rt::Vec3 origin{0, 0, 0};
-    const FieldSpec surface = optional("surface", T::surface);
+    const auto n = [](const char* name) { return number(name, 0); };  // the quadric's terms
     return {
-        {"sphere",
-         1,
-         Category::primitive,
-         {required("radius", T::number), with_default("centre", T::vector, origin), surface}},
-        {"plane",
-         2,
-         Category::primitive,
-         {required("normal", T::vector), with_default("distance", 0), surface}},
-        {"disk",
-         3,
-         Category::primitive,
-         {with_default("centre", T::vector, origin), required("normal", T::vector),
-          required("radius", T::number), surface}},
-        {"annulus",
-         4,
-         Category::primitive,
-         {with_default("centre", T::vector, origin), required("normal", T::vector),
-          required("outer", T::number), with_default("inner", 0), surface}},
-        {"triangle", 5, Category::primitive, {list("vertex"), surface}},
-        {"parallelogram",
-         6,
-         Category::primitive,
-         {with_default("corner", T::vector, origin), required("a", T::vector),
-          required("b", T::vector), surface}},
-        {"cone",
-         8,
-         Category::primitive,
-         {optional("alpha", T::number), optional("angle", T::number), with_default("start", 0),
-          with_default("finish", 1), with_default("apex", T::vector, origin),
-          required("axis", T::vector), surface}},
-        {"cylinder",
-         9,
-         Category::primitive,
-         {required("radius", T::number), with_default("start", 0), with_default("finish", 1),
-          with_default("origin", T::vector, origin), required("axis", T::vector), surface}},
-        {"torus",
-         10,
-         Category::primitive,
-         {with_default("centre", T::vector, origin), required("axis", T::vector),
-          required("major", T::number), required("minor", T::number), surface}},
-        {"polygon", 11, Category::primitive, {list("vertex"), surface}},
-        {"box",
-         12,
-         Category::primitive,
-         {required("min", T::vector), required("max", T::vector), surface}},
-        {"quadric",
-         13,
-         Category::primitive,
-         {with_default("xx", 0), with_default("yy", 0), with_default("zz", 0),
-          with_default("xy", 0), with_default("xz", 0), with_default("yz", 0), with_default("x", 0),
-          with_default("y", 0), with_default("z", 0), with_default("constant", 0),
-          required("min", T::vector), required("max", T::vector), surface}},
-        {"mesh", 14, Category::primitive, {list("vertex"), list("triangle"), surface}},
-        {"union", 20, Category::csg, {}},
-        {"intersection", 21, Category::csg, {}},
-        {"difference", 22, Category::csg, {}},
-        {"group", 0, Category::group, {}},
-        {"surface",
-         100,
-         Category::surface,
-         {required("colour", T::colour), with_default("ks", 0), with_default("ke", 1),
-          required("kd", T::number), with_default("kt", 0), with_default("ior", 1)}},
-        {"checker",
-         107,
-         Category::surface,
-         {required("cell", T::number), required("a", T::surface), required("b", T::surface)}},
-        {"image",
-         108,
-         Category::surface,
-         {with_default("origin", T::vector, origin), required("u", T::vector),
-          required("v", T::vector), required("file", T::string), required("base", T::surface)}},
-        {"glass",
-         114,
-         Category::surface,
-         {with_default("colour", T::colour, {1, 1, 1}), with_default("ks", 0),
-          with_default("ke", 1), with_default("kd", 0), required("ior", T::number),
-          with_default("absorption", T::colour, origin)}},
-        {"point_light",
-         104,
-         Category::light,
-         {required("position", T::vector),
-          required("intensity", T::colour),
-          {"falloff", T::flag, true, 0, {}, false}}},
-        {"ambient", 103, Category::ambient, {required("intensity", T::colour)}},
-        {"spot_light",
-         109,
-         Category::light,
-         {required("position", T::vector), required("direction", T::vector),
-          optional("cos_cutoff", T::number), optional("cutoff_angle", T::number),
-          with_default("exponent", 0), required("intensity", T::colour)}},
-        {"sphere_light",
-         110,
-         Category::light,
-         {with_default("samples", 16), with_default("centre", T::vector, origin),
-          required("radius", T::number), required("intensity", T::colour)}},
-        {"directional_light",
-         113,
-         Category::light,
-         {required("direction", T::vector), required("intensity", T::colour)}},
-        {"camera",
-         102,
-         Category::camera,
-         {required("position", T::vector),
-          required("look_at", T::vector),
-          with_default("up", T::vector, {0, 1, 0}),
-          optional("fov", T::number),
-          optional("half_width", T::number),
-          required("size", T::size),
-          {"upright", T::flag, true, 0, {}, false}}},
-        {"viewer",
-         102,
-         Category::viewer,
-         {required("eye", T::vector), required("look_at", T::vector), required("x", T::vector),
-          required("y", T::vector), required("size", T::size)}},
+        primitive("sphere", 1, {number("radius"), vector("centre", origin)}),
+        // The language gives the normal first, as in normal·x = distance.
+        primitive("plane", 2, {number("distance", 0), vector("normal")},
+                  "normal, distance, surface"),
+        primitive("disk", 3, {vector("centre", origin), vector("normal"), number("radius")}),
+        primitive(
+            "annulus", 4,
+            {vector("centre", origin), vector("normal"), number("outer"), number("inner", 0)}),
+        primitive("triangle", 5, {list("vertex", Write::three)}),
+        primitive("parallelogram", 6, {vector("corner", origin), vector("a"), vector("b")}),
+        primitive("cone", 8,
+                  {cosine("alpha", "angle"), alternative("angle"), number("start", 0),
+                   number("finish", 1), vector("apex", origin), vector("axis")}),
+        primitive("cylinder", 9,
+                  {number("radius"), number("start", 0), number("finish", 1),
+                   vector("origin", origin), vector("axis")}),
+        primitive("torus", 10,
+                  {vector("centre", origin), vector("axis"), number("major"), number("minor")}),
+        primitive("polygon", 11, {list("vertex", Write::counted)}),
+        primitive("box", 12, {vector("min"), vector("max")}),
+        primitive("quadric", 13,
+                  {n("xx"), n("yy"), n("zz"), n("xy"), n("xz"), n("yz"), n("x"), n("y"), n("z"),
+                   n("constant"), vector("min"), vector("max")}),
+        primitive("mesh", 14,
+                  {list("vertex", Write::indexed, "triangle"), list("triangle", Write::none)}),
+        composite("union", 20, 20),
+        composite("intersection", 21, 21),
+        composite("difference", 22, 20),
+        kind("group", 0, Category::group, {}),
+        kind("surface", 100, Category::surface,
+             {colour("colour"), number("ks", 0), number("ke", 1), number("kd"), number("kt", 0),
+              number("ior", 1)}),
+        kind("checker", 107, Category::surface, {number("cell"), surface("a"), surface("b")}),
+        kind("image", 108, Category::surface,
+             {vector("origin", origin), vector("u"), vector("v"), file("file"), surface("base")}),
+        kind("glass", 114, Category::surface,
+             {colour("colour", {1, 1, 1}), number("ks", 0), number("ke", 1), number("kd", 0),
+              number("ior"), colour("absorption", origin)}),
+        kind("point_light", 104, Category::light,
+             {vector("position"), colour("intensity"), flag("falloff", 101)}),
+        kind("ambient", 103, Category::ambient, {colour("intensity")}),
+        kind("spot_light", 109, Category::light,
+             {vector("position"), vector("direction"), cosine("cos_cutoff", "cutoff_angle"),
+              alternative("cutoff_angle"), number("exponent", 0), colour("intensity")}),
+        kind("sphere_light", 110, Category::light,
+             {number("samples", 16), vector("centre", origin), number("radius"),
+              colour("intensity")}),
+        kind("directional_light", 113, Category::light, {vector("direction"), colour("intensity")}),
+        // Its viewer vectors are computed from all its fields together (Emitter::camera).
+        kind("camera", 102, Category::camera,
+             {vector("position"), vector("look_at"), vector("up", {0, 1, 0}), alternative("fov"),
+              alternative("half_width"), size(), flag("upright")}),
+        kind("viewer", 102, Category::viewer,
+             {vector("eye"), vector("look_at"), vector("x"), vector("y"), size()}),
     };
 }
 
@@ -159,6 +137,7 @@ const FieldSpec* Kind::field(std::string_view name) const {
 }
 
 std::string Kind::field_names() const {
+    if (listed != nullptr) return listed;
     std::string names;
     for (const FieldSpec& spec : fields)
         names += (names.empty() ? "" : ", ") + std::string(spec.name);

@@ -1,6 +1,7 @@
 // The table of object kinds: each keyword of the language, the contract ID it writes, and its
-// fields with their types and defaults. The evaluator checks fields against it as they are
-// set; the emitter writes each kind's numbers in the contract's order.
+// fields in the contract's order with their types, defaults and how each is written. The
+// evaluator checks fields against it as they are set; the emitter writes each kind's numbers
+// from its row alone, so a new kind is one row here.
 #pragma once
 
 #include <string>
@@ -23,6 +24,27 @@ enum class FieldType {
     size,  // two whole numbers: width, height
 };
 
+// How the emitter writes a field, where the field stands in the contract's order.
+enum class Write {
+    number,   // its number
+    vector,   // its three numbers (a colour's too)
+    surface,  // the surface, in full
+    slot,     // a primitive's surface: in full, or 106 for the default surface
+    file,     // the file name, quoted, relative to where rtpp runs
+    size,     // width and height
+    // Exactly one of this field and `other`: this one's number, or the cosine of the other,
+    // which is in degrees.
+    cosine_or_degrees,
+    three,    // repeated vertices, exactly three
+    counted,  // repeated vertices, three or more: their count, then each
+    // A mesh: the counts of this repeated vector and of `other`, this one's vectors, then
+    // the other's, checked as index triples into this one.
+    indexed,
+    // Nothing where it stands: the other of a pair, or a flag that chooses the ID (`id`
+    // when true). A camera's fields are all read together (Emitter::camera).
+    none,
+};
+
 struct FieldSpec {
     const char* name;
     FieldType type;
@@ -30,13 +52,21 @@ struct FieldSpec {
     double default_number = 0;
     rt::Vec3 default_vector;
     bool repeated = false;  // each statement adds one (a polygon's vertices)
+    Write write = Write::none;
+    const char* other = nullptr;  // the field written with this one (Write above)
+    int id = 0;                   // a flag's: the ID the kind writes when it is true
 };
 
 struct Kind {
     const char* keyword;
     int id;  // the contract's ID; for kinds that write more than one, the usual one
     Category category;
-    std::vector<FieldSpec> fields;
+    std::vector<FieldSpec> fields;  // in the contract's order
+    // How messages list the fields, where not in that order ("normal, distance, surface").
+    const char* listed = nullptr;
+    // A composite of more than two: the ID that joins the operands after the first (a
+    // difference takes their union).
+    int rest_id = 0;
 
     const FieldSpec* field(std::string_view name) const;
     std::string field_names() const;  // "radius, centre, surface"

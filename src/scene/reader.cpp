@@ -240,7 +240,7 @@ Shape SceneReader::shape(std::string_view what) {
     if (type == nullptr)
         fail(where, "expected " + std::string(what) + " ID (a primitive, 1-99), got " +
                         describe_id(type_id));
-    return {type, type->read(*this)};
+    return {type, type->functions->read(*this)};
 }
 
 SurfacePtr SceneReader::surface() {
@@ -364,7 +364,7 @@ void SceneReader::read_top_level_object(Scene& scene, bool& have_viewer) {
     begin_object(type_id, where, true);
     if (const PrimitiveType* type = find_primitive_type(small)) {
         Object object;
-        object.shape = {type, type->read(*this)};
+        object.shape = {type, type->functions->read(*this)};
         // CSG (and an affine of CSG) carries its operands' surfaces and has none of its own.
         if (!object.shape.carries_surfaces()) object.surface = surface();
         scene.objects.push_back(std::move(object));
