@@ -29,7 +29,7 @@
 #include "batch/progress.h"
 #include "rt/reader.h"
 #include "batch/statistics.h"
-#include "rt/trace.h"
+#include "rt/render.h"
 
 namespace {
 

@@ -11,6 +11,7 @@
 
 #include "accel/bvh.h"
 #include "accel/object_index.h"
+#include "rt/render.h"
 #include "rt/trace.h"
 #include "scene_util.h"
 

@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "check.h"
+#include "rt/optics.h"
+#include "rt/render.h"
 #include "rt/trace.h"
 #include "scene_util.h"
 

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <string>
 
+#include "rt/optics.h"
 #include "rt/trace.h"
 #include "scene_util.h"
 

@@ -6,6 +6,7 @@
 #include <thread>
 #include <vector>
 
+#include "rt/render.h"
 #include "rt/trace.h"
 #include "scene_util.h"
 

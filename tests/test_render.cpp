@@ -3,6 +3,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "rt/optics.h"
+#include "rt/render.h"
 #include "rt/trace.h"
 #include "scene_util.h"
 

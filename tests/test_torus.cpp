@@ -8,6 +8,7 @@
 #include <cmath>
 #include <optional>
 
+#include "rt/optics.h"
 #include "rt/trace.h"
 #include "scene_util.h"
 

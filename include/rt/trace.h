@@ -1,7 +1,6 @@
-// The recursive tracer of sections 1.6 to 1.10 of the original.
+// The recursive tracer of sections 1.6 to 1.10 of the original: what one ray brings back.
 #pragma once
 
-#include <atomic>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -19,17 +18,6 @@ inline constexpr double kHitTolerance = 1e-7;
 
 // The smallest distance a hit along a ray from `origin` may have.
 double hit_tolerance(const Vec3& origin);
-
-// The mirror direction of `incoming` about a unit normal.
-Vec3 reflect(const Vec3& incoming, const Vec3& normal);
-// The direction refracted by Snell's law for a unit incoming direction and a unit normal that
-// faces it (dot(incoming, normal) <= 0), where eta = n1 / n2. Nothing on total internal
-// reflection.
-std::optional<Vec3> refract(const Vec3& incoming, const Vec3& normal, double eta);
-// The Fresnel reflectance F = (R_s + R_p) / 2 of unpolarised light meeting, at an angle whose
-// cosine is cos_i, the boundary from a medium of index n1 into one of index n2: the fraction
-// reflected (1 - F passes through). 1 on total internal reflection.
-double fresnel_reflectance(double cos_i, double n1, double n2);
 
 struct SceneHit {
     const Object* object;
@@ -101,40 +89,5 @@ class Tracer {
     // Per light, the object that last blocked a shadow ray toward it.
     mutable std::vector<LastBlocker> last_blockers_;
 };
-
-// The number of threads a render uses for RenderOptions::threads (0: one per hardware thread).
-int worker_threads(int requested);
-
-// Renders every pixel of the scene's viewer. Rows are shared among threads, and each pixel
-// depends on nothing else, so the result is the same whatever the number of threads. With
-// options.adaptive_threshold, every pixel is first traced with the original's one ray, and
-// only the pixels that differ from a 4-connected neighbour by more than the threshold (in some
-// component, both clamped to [0, 1]) are replaced by their options.samples^2 grid: exactly the
-// value Tracer::pixel gives them. When stats is given, the counts of every thread are added
-// into it.
-// What a render has done so far, for a progress display on another thread. Each thread
-// publishes once per row it finishes: rows of every pass that traces, and rays traced.
-struct RenderProgress {
-    std::atomic<std::uint64_t> rows_total{0};
-    std::atomic<std::uint64_t> rows_done{0};
-    std::atomic<std::uint64_t> rays{0};
-};
-
-Raster render(const Scene& scene, const RenderOptions& options, RenderStats* stats = nullptr,
-              RenderProgress* progress = nullptr);
-
-// The viewer's whole image as a rectangle.
-inline PixelRect image_rect(const Viewer& v) { return {0, 0, v.xres, v.yres}; }
-
-// Renders only `region` (within the viewer's image, not empty; std::invalid_argument
-// otherwise) into a raster of its size. Each pixel is traced at its own place in the full
-// image, and adaptive decisions see the one-ray values of a one-pixel margin around the
-// region, so every pixel equals the same pixel of render(), whatever the thread count.
-Raster render_region(const Scene& scene, const RenderOptions& options, const PixelRect& region,
-                     RenderStats* stats = nullptr, RenderProgress* progress = nullptr);
-
-// The threads render_region uses: options.threads (or one per hardware thread), but never
-// more than the region has rows, since rows are what they share.
-int render_threads(const RenderOptions& options, const PixelRect& region);
 
 }  // namespace rt
