@@ -45,8 +45,9 @@ struct RenderStats {
     }
 };
 
-// Traces rays through a scene. A Tracer counts the rays it traces, so each thread uses its
-// own; the scene is shared read-only. With options.accelerate (the default) the scene's
+// Traces rays through a scene. A Tracer counts the rays it traces and remembers the last
+// blocker of each light, so tracing changes it and each thread uses its own; the scene is
+// shared read-only. With options.accelerate (the default) the scene's
 // index must have been built (read_scene does), or construction throws std::logic_error.
 class Tracer {
   public:
@@ -56,27 +57,27 @@ class Tracer {
     // ior and absorption those of the medium the ray travels in: what the ray brings back from
     // a hit at distance t is multiplied by exp(-absorption t).
     Spectrum trace(const Ray& ray, int depth = 0, double weight = 1, double ior = 1,
-                   const Spectrum& absorption = Spectrum(0.0)) const;
+                   const Spectrum& absorption = Spectrum(0.0));
     // A primary ray's value in the current render mode.
-    Spectrum shade_primary(const Ray& ray) const;
+    Spectrum shade_primary(const Ray& ray);
     // The value of pixel (x, y): the mean of options.samples^2 primary rays on a grid centred
     // on the original's ray through (x, y). traced_centre, when given, is that ray's value,
     // already traced: an odd grid, whose middle sample is that ray, uses it instead of
     // tracing the ray again (the sum is the same, bit for bit).
-    Spectrum pixel(int x, int y, const Spectrum* traced_centre = nullptr) const;
+    Spectrum pixel(int x, int y, const Spectrum* traced_centre = nullptr);
     // The value of the original's one ray through pixel (x, y), whatever options.samples is.
-    Spectrum one_ray(int x, int y) const { return shade_primary(scene_.viewer.primary_ray(x, y)); }
+    Spectrum one_ray(int x, int y) { return shade_primary(scene_.viewer.primary_ray(x, y)); }
 
-    std::optional<SceneHit> closest_hit(const Ray& ray) const;
+    std::optional<SceneHit> closest_hit(const Ray& ray);
     // True when any object lies along the ray closer than `distance`.
-    bool blocked(const Ray& ray, double distance) const;
+    bool blocked(const Ray& ray, double distance);
 
     const RenderStats& stats() const { return stats_; }
 
   private:
-    bool blocked(const Ray& ray, double distance, LastBlocker* last) const;
+    bool blocked(const Ray& ray, double distance, LastBlocker* last);
     Spectrum direct_light(const Vec3& point, const Vec3& facing_normal, const Vec3& reflected,
-                          const Material& m, double ks) const;
+                          const Material& m, double ks);
     bool may_trace(int depth, double weight) const {
         return depth <= options_.max_depth && weight >= options_.min_weight;
     }
@@ -84,10 +85,9 @@ class Tracer {
     const Scene& scene_;
     const ObjectIndex* index_;  // the scene's hierarchy, when options_.accelerate
     RenderOptions options_;  // a copy: small, and safe when built from a temporary
-    // Counting is not part of what a trace computes, so the const methods may count.
-    mutable RenderStats stats_;
+    RenderStats stats_;
     // Per light, the object that last blocked a shadow ray toward it.
-    mutable std::vector<LastBlocker> last_blockers_;
+    std::vector<LastBlocker> last_blockers_;
 };
 
 }  // namespace rt

@@ -48,10 +48,10 @@ class Window {
 // (one thread per tracer); returns once every row is done.
 // With `progress`, each finished row and the rays traced for it are published.
 template <typename Work>
-void for_each_row(const std::vector<Tracer>& tracers, const PixelRect& rect, const Work& work,
+void for_each_row(std::vector<Tracer>& tracers, const PixelRect& rect, const Work& work,
                   RenderProgress* progress = nullptr) {
     std::atomic<int> next_row{rect.y0};
-    auto worker = [&](const Tracer& tracer) {
+    auto worker = [&](Tracer& tracer) {
         std::uint64_t published = tracer.stats().total();
         for (int y = next_row++; y < rect.y1; y = next_row++) {
             work(tracer, y);
@@ -64,7 +64,7 @@ void for_each_row(const std::vector<Tracer>& tracers, const PixelRect& rect, con
     };
     std::vector<std::jthread> pool;
     for (std::size_t i = 1; i < tracers.size(); ++i)
-        pool.emplace_back(worker, std::cref(tracers[i]));
+        pool.emplace_back(worker, std::ref(tracers[i]));
     worker(tracers[0]);
 }  // every worker joins here
 
@@ -93,7 +93,7 @@ bool needs_supersampling(const Window& one_ray, const PixelRect& known, int x, i
 // They need the one-ray values of a one-pixel margin around `rect` (within the image), which
 // `raster` must cover: a region of the image rendered this way decides at its edges exactly
 // as the whole image does.
-void render_adaptive(const std::vector<Tracer>& tracers, const PixelRect& rect,
+void render_adaptive(std::vector<Tracer>& tracers, const PixelRect& rect,
                      const PixelRect& image, double threshold, Window& raster,
                      RenderProgress* progress) {
     const PixelRect known = with_margin(rect, image);
@@ -103,7 +103,7 @@ void render_adaptive(const std::vector<Tracer>& tracers, const PixelRect& rect,
             static_cast<std::uint64_t>((known.y1 - known.y0) + rect.height()));
     for_each_row(
         tracers, known,
-        [&](const Tracer& tracer, int y) {
+        [&](Tracer& tracer, int y) {
             for (int x = known.x0; x < known.x1; ++x) raster.set(x, y, tracer.one_ray(x, y));
         },
         progress);
@@ -113,13 +113,13 @@ void render_adaptive(const std::vector<Tracer>& tracers, const PixelRect& rect,
     const auto flag = [&](int x, int y) -> unsigned char& {
         return supersample[static_cast<std::size_t>(y - rect.y0) * rect.width() + (x - rect.x0)];
     };
-    for_each_row(tracers, rect, [&](const Tracer&, int y) {
+    for_each_row(tracers, rect, [&](Tracer&, int y) {
         for (int x = rect.x0; x < rect.x1; ++x)
             flag(x, y) = needs_supersampling(raster, known, x, y, threshold) ? 1 : 0;
     });
     for_each_row(
         tracers, rect,
-        [&](const Tracer& tracer, int y) {
+        [&](Tracer& tracer, int y) {
             for (int x = rect.x0; x < rect.x1; ++x) {
                 if (flag(x, y) == 0) continue;
                 const Spectrum centre = raster.at(x, y);
@@ -147,7 +147,7 @@ Raster render_region(const Scene& scene, const RenderOptions& options, const Pix
         throw std::invalid_argument("render_region: the region is empty or outside the image");
     const int threads = render_threads(options, region);
     // One tracer per thread, each counting its own rays; merged once all have joined.
-    const std::vector<Tracer> tracers(static_cast<std::size_t>(threads), Tracer(scene, options));
+    std::vector<Tracer> tracers(static_cast<std::size_t>(threads), Tracer(scene, options));
     // Adaptive decisions need the one-ray values of a margin around the region.
     const PixelRect canvas = options.adaptive_threshold ? with_margin(region, image) : region;
     Window raster(canvas);
@@ -158,7 +158,7 @@ Raster render_region(const Scene& scene, const RenderOptions& options, const Pix
             progress->rows_total.store(static_cast<std::uint64_t>(region.height()));
         for_each_row(
             tracers, region,
-            [&](const Tracer& tracer, int y) {
+            [&](Tracer& tracer, int y) {
                 for (int x = region.x0; x < region.x1; ++x) raster.set(x, y, tracer.pixel(x, y));
             },
             progress);

@@ -60,7 +60,7 @@ Tracer::Tracer(const Scene& scene, const RenderOptions& options)
         throw std::logic_error("Tracer: the scene's index was not built (Scene::build_index)");
 }
 
-std::optional<SceneHit> Tracer::closest_hit(const Ray& ray) const {
+std::optional<SceneHit> Tracer::closest_hit(const Ray& ray) {
     Interval range{hit_tolerance(ray.origin), kInfinity};
     if (options_.accelerate) {
         ObjectIndex::Found found;
@@ -80,11 +80,11 @@ std::optional<SceneHit> Tracer::closest_hit(const Ray& ray) const {
     return best;
 }
 
-bool Tracer::blocked(const Ray& ray, double distance) const {
+bool Tracer::blocked(const Ray& ray, double distance) {
     return blocked(ray, distance, nullptr);
 }
 
-bool Tracer::blocked(const Ray& ray, double distance, LastBlocker* last) const {
+bool Tracer::blocked(const Ray& ray, double distance, LastBlocker* last) {
     ++stats_.shadow_rays;
     const Interval range{hit_tolerance(ray.origin), distance};
     if (options_.accelerate) return index_->any(ray, range, last, &stats_.object_tests);
@@ -95,7 +95,7 @@ bool Tracer::blocked(const Ray& ray, double distance, LastBlocker* last) const {
 }
 
 Spectrum Tracer::direct_light(const Vec3& point, const Vec3& facing_normal, const Vec3& reflected,
-                              const Material& m, double ks) const {
+                              const Material& m, double ks) {
     Spectrum total(0.0);
     for (std::size_t l = 0; l < scene_.lights.size(); ++l) {
         const Light& light = scene_.lights[l];
@@ -118,7 +118,7 @@ Spectrum Tracer::direct_light(const Vec3& point, const Vec3& facing_normal, cons
 }
 
 Spectrum Tracer::trace(const Ray& ray, int depth, double weight, double ior,
-                       const Spectrum& absorption) const {
+                       const Spectrum& absorption) {
     if (depth == 0) ++stats_.primary_rays;  // secondary rays are counted where they start
     const auto found = closest_hit(ray);
     // A ray that escapes brings back the ambient intensity.
@@ -158,7 +158,7 @@ Spectrum Tracer::trace(const Ray& ray, int depth, double weight, double ior,
     return result;
 }
 
-Spectrum Tracer::shade_primary(const Ray& ray) const {
+Spectrum Tracer::shade_primary(const Ray& ray) {
     if (options_.mode == RenderMode::trace) return trace(ray);
     ++stats_.primary_rays;
     const auto found = closest_hit(ray);
@@ -179,7 +179,7 @@ Spectrum Tracer::shade_primary(const Ray& ray) const {
     return trace(ray);
 }
 
-Spectrum Tracer::pixel(int x, int y, const Spectrum* traced_centre) const {
+Spectrum Tracer::pixel(int x, int y, const Spectrum* traced_centre) {
     const int n = options_.samples;
     if (n <= 1) return traced_centre != nullptr ? *traced_centre : one_ray(x, y);
     // An n x n grid centred on the original's ray (offsets (k + 1/2)/n - 1/2), so that every n
