@@ -160,6 +160,7 @@ Spectrum Tracer::trace(const Ray& ray, int depth, double weight, double ior,
 
 Spectrum Tracer::shade_primary(const Ray& ray) {
     if (options_.mode == RenderMode::trace) return trace(ray);
+    // The other modes show one property of the first hit, and black where the ray escapes.
     ++stats_.primary_rays;
     const auto found = closest_hit(ray);
     if (!found) return Spectrum(0.0);
@@ -173,10 +174,10 @@ Spectrum Tracer::shade_primary(const Ray& ray) {
             const Vec3 n = found->object->shape.normal(point, found->hit);
             return Spectrum(std::fabs(dot(n, ray.direction)));
         }
-        case RenderMode::trace:
+        case RenderMode::trace:  // traced above
             break;
     }
-    return trace(ray);
+    throw std::logic_error("Tracer::shade_primary: not a render mode");
 }
 
 Spectrum Tracer::pixel(int x, int y, const Spectrum* traced_centre) {
