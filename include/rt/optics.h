@@ -8,8 +8,11 @@
 
 namespace rt {
 
-// The mirror direction of `incoming` about a unit normal.
-Vec3 reflect(const Vec3& incoming, const Vec3& normal);
+// The mirror direction of `incoming` about a unit normal. Inline: every hit the tracer shades
+// asks for it.
+inline Vec3 reflect(const Vec3& incoming, const Vec3& normal) {
+    return incoming - 2 * dot(incoming, normal) * normal;
+}
 // The direction refracted by Snell's law for a unit incoming direction and a unit normal that
 // faces it (dot(incoming, normal) <= 0), where eta = n1 / n2. Nothing on total internal
 // reflection.

@@ -5,10 +5,6 @@
 
 namespace rt {
 
-Vec3 reflect(const Vec3& incoming, const Vec3& normal) {
-    return incoming - 2 * dot(incoming, normal) * normal;
-}
-
 std::optional<Vec3> refract(const Vec3& incoming, const Vec3& normal, double eta) {
     const double cos_i = -dot(incoming, normal);
     const double k = 1 - eta * eta * (1 - cos_i * cos_i);

@@ -51,6 +51,12 @@ Spectrum transmittance(const Spectrum& absorption, double t) {
     return left;
 }
 
+// Where a switch over RenderMode meets a value outside it. Out of line, so that the code that
+// builds the exception does not stand in the way of inlining its caller.
+[[noreturn]] void not_a_render_mode() {
+    throw std::logic_error("Tracer: not a render mode");
+}
+
 }  // namespace
 
 Tracer::Tracer(const Scene& scene, const RenderOptions& options)
@@ -177,7 +183,7 @@ Spectrum Tracer::shade_primary(const Ray& ray) {
         case RenderMode::trace:  // traced above
             break;
     }
-    throw std::logic_error("Tracer::shade_primary: not a render mode");
+    not_a_render_mode();
 }
 
 Spectrum Tracer::pixel(int x, int y, const Spectrum* traced_centre) {
