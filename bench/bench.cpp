@@ -21,7 +21,7 @@
 #include "rt/error.h"
 #include "rt/reader.h"
 #include "batch/statistics.h"
-#include "rt/trace.h"
+#include "rt/render.h"
 
 namespace {
 

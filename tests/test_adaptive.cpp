@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "rt/trace.h"
+#include "rt/render.h"
 #include "scene_util.h"
 
 using namespace rt;

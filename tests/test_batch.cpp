@@ -5,7 +5,7 @@
 #include "cli_util.h"
 #include "batch/progress.h"
 #include "batch/statistics.h"
-#include "rt/trace.h"
+#include "rt/render.h"
 #include "rt/viewer.h"
 #include "scene_util.h"
 

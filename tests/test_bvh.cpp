@@ -11,6 +11,7 @@
 
 #include "accel/bvh.h"
 #include "accel/object_index.h"
+#include "rt/render.h"
 #include "rt/trace.h"
 #include "scene_util.h"
 
@@ -449,8 +450,8 @@ bool same_image(const Raster& a, const Raster& b) {
 
 // Counts rays on which the two tracers disagree about the nearest hit or a shadow.
 int disagreements(const Scene& scene, Random& random, int rays) {
-    const Tracer fast(scene, {});
-    const Tracer slow(scene, linear_options());
+    Tracer fast(scene, {});
+    Tracer slow(scene, linear_options());
     int differ = 0;
     for (int r = 0; r < rays; ++r) {
         // From outside, from inside the crowd, and along the axes (rays parallel to slabs).

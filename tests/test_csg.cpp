@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "check.h"
+#include "rt/optics.h"
+#include "rt/render.h"
 #include "rt/trace.h"
 #include "scene_util.h"
 
@@ -151,7 +153,7 @@ TEST(sphere_with_a_box_cut_out) {
     // The octant x, y, z > 0 of a unit sphere is cut away by a box.
     const rt::Scene scene = parse_scene(std::string(kTestViewer) + "22  1 1 0 0 0" + kRed +
                                         "  12 0 0 0 2 2 2" + kGreen);
-    const rt::Tracer tracer(scene, {});
+    rt::Tracer tracer(scene, {});
     const rt::Object& object = scene.objects.at(0);
     // Straight down onto the cut: the sphere's cap there is gone, and the box's face z = 0
     // (inside the sphere) is what is seen, with the box's surface and its normal turned
@@ -201,7 +203,7 @@ TEST(a_lens_focuses_paraxial_rays_at_its_back_focal_distance) {
     const std::string glass = " 100 1 1 1 0 1 0 1 " + std::to_string(n);
     const rt::Scene scene = parse_scene(std::string(kTestViewer) + "21  1 2 0 0 -1.7" + glass +
                                         "  1 2 0 0 1.7" + glass);
-    const rt::Tracer tracer(scene, {});
+    rt::Tracer tracer(scene, {});
     const rt::Object& lens = scene.objects.at(0);
     for (const double h : {1e-4, 2e-4, 5e-4}) {
         rt::Ray ray{{h, 0, 5}, {0, 0, -1}};
@@ -260,7 +262,7 @@ TEST(nested_composites_report_the_operand_surface_and_normal) {
                     "\n1 0.1  0 0 -50" + kRed);
     CHECK_EQ(scene.objects.size(), std::size_t{2});  // no surface was read after the affine
     const rt::Object& object = scene.objects.at(0);
-    const rt::Tracer tracer(scene, {});
+    rt::Tracer tracer(scene, {});
     for (const double x : {-0.5, 0.5}) {
         // Straight down into a pip's centre: the pit's floor at depth 0.3, normal +z (the
         // pip sphere's normal turned around), in the pip's colour.
@@ -329,7 +331,7 @@ TEST(a_quadric_operand_is_its_whole_solid_not_only_its_clipped_surface) {
     const std::string half_space = "13  0 0 0 0 0 0  0 0 0.5 0  -0.1 -0.1 -0.1  0.1 0.1 0.1";
     const rt::Scene scene =
         parse_scene(std::string(kTestViewer) + "21  1 1 0 0 0" + kRed + "  " + half_space + kBlue);
-    const rt::Tracer tracer(scene, {});
+    rt::Tracer tracer(scene, {});
     const rt::Object& object = scene.objects.at(0);
     // Down through the invisible part of the face: the ray crosses into B where nothing is
     // drawn and meets the sphere's bottom from inside.

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <vector>
 
+#include "random_rays.h"
 #include "scene_util.h"
 
 using namespace rt;
@@ -96,6 +97,29 @@ bool check_ray(const Shape& shape, const Ray& ray, std::optional<double> crossin
     CHECK_EQ(other.t, -1.0);  // left alone
     CHECK(shape.intersect(ray, {kTMin, hit->t * (1 + 1e-9) + 1e-12}, other));
     return true;
+}
+
+// Where a crossing lies against a flat shape's outline; `edge`: too close to it to tell which
+// side the code's rounding puts the crossing.
+enum class Place { on, off, edge };
+
+// Checks one ray against a flat shape in the plane through `on_plane` with normal n (any
+// length), whose outline place(p, t) decides for the crossing point p at distance t, and
+// counts it; a crossing at an edge is skipped.
+template <typename Where>
+void check_flat_ray(const Shape& shape, const Ray& ray, const Vec3& on_plane, const Vec3& n,
+                    RayCounts& counts, const Where& place) {
+    const auto crossing = plane_crossing(on_plane, n, ray);
+    bool on_shape = false;
+    if (crossing) {
+        const Place at = place(ray.at(*crossing), *crossing);
+        if (at == Place::edge) {
+            ++counts.skipped;
+            return;
+        }
+        on_shape = at == Place::on;
+    }
+    (check_ray(shape, ray, crossing, on_shape, normalized(n)) ? counts.hits : counts.misses)++;
 }
 
 std::string primitive_error(const std::string& text) {
@@ -234,7 +258,7 @@ TEST(plane_hit_behind_the_origin_is_not_reported) {
 
 TEST(disk_random_rays_match_closed_form) {
     Random random(3);
-    int hits = 0, misses = 0, skipped = 0;
+    RayCounts counts;
     for (int i = 0; i < 20000; ++i) {
         const Vec3 c = random.in_box(5);
         const Vec3 n = random.in_box(2);
@@ -247,22 +271,15 @@ TEST(disk_random_rays_match_closed_form) {
             c + u * random.uniform(-1.5 * r, 1.5 * r) + v * random.uniform(-1.5 * r, 1.5 * r);
         Ray ray = ray_toward(random, aim);
         if (i % 4 == 0) ray.direction = random.unit_vector();
-        const auto crossing = plane_crossing(c, n, ray);
-        bool on_disk = false;
-        if (crossing) {
-            const double from_centre = length(ray.at(*crossing) - c);
-            // Too close to the rim to tell which side the code's rounding puts it.
-            if (std::fabs(from_centre - r) < 1e-9 * (1 + *crossing)) {
-                ++skipped;
-                continue;
-            }
-            on_disk = from_centre <= r;
-        }
-        (check_ray(s, ray, crossing, on_disk, normalized(n)) ? hits : misses)++;
+        check_flat_ray(s, ray, c, n, counts, [&](const Vec3& p, double t) {
+            const double from_centre = length(p - c);
+            if (std::fabs(from_centre - r) < 1e-9 * (1 + t)) return Place::edge;
+            return from_centre <= r ? Place::on : Place::off;
+        });
     }
-    CHECK(hits > 4000);
-    CHECK(misses > 4000);
-    CHECK(skipped < 10);
+    CHECK(counts.hits > 4000);
+    CHECK(counts.misses > 4000);
+    CHECK(counts.skipped < 10);
 }
 
 TEST(disk_rim_and_parallel_rays) {
@@ -325,7 +342,8 @@ TEST(disk_bounds_touch_the_rim) {
 
 TEST(annulus_random_rays_match_closed_form) {
     Random random(4);
-    int hits = 0, misses = 0, in_hole = 0, skipped = 0;
+    RayCounts counts;
+    int in_hole = 0;
     for (int i = 0; i < 20000; ++i) {
         const Vec3 c = random.in_box(5);
         const Vec3 n = random.in_box(2);
@@ -338,25 +356,19 @@ TEST(annulus_random_rays_match_closed_form) {
                          v * random.uniform(-1.3 * outer, 1.3 * outer);
         Ray ray = ray_toward(random, aim);
         if (i % 4 == 0) ray.direction = random.unit_vector();
-        const auto crossing = plane_crossing(c, n, ray);
-        bool on_annulus = false;
-        if (crossing) {
-            const double from_centre = length(ray.at(*crossing) - c);
-            const double margin = 1e-9 * (1 + *crossing);
-            if (std::fabs(from_centre - outer) < margin ||
-                std::fabs(from_centre - inner) < margin) {
-                ++skipped;
-                continue;
-            }
-            on_annulus = from_centre <= outer && from_centre >= inner;
+        check_flat_ray(s, ray, c, n, counts, [&](const Vec3& p, double t) {
+            const double from_centre = length(p - c);
+            const double margin = 1e-9 * (1 + t);
+            if (std::fabs(from_centre - outer) < margin || std::fabs(from_centre - inner) < margin)
+                return Place::edge;
             if (from_centre < inner) ++in_hole;
-        }
-        (check_ray(s, ray, crossing, on_annulus, normalized(n)) ? hits : misses)++;
+            return from_centre <= outer && from_centre >= inner ? Place::on : Place::off;
+        });
     }
-    CHECK(hits > 4000);
-    CHECK(misses > 4000);
+    CHECK(counts.hits > 4000);
+    CHECK(counts.misses > 4000);
     CHECK(in_hole > 1000);
-    CHECK(skipped < 10);
+    CHECK(counts.skipped < 10);
 }
 
 TEST(annulus_edges) {
@@ -391,7 +403,7 @@ TEST(annulus_edges) {
 
 TEST(triangle_random_rays_match_closed_form) {
     Random random(5);
-    int hits = 0, misses = 0, skipped = 0;
+    RayCounts counts;
     for (int i = 0; i < 20000; ++i) {
         const Vec3 v0 = random.in_box(4), v1 = random.in_box(4), v2 = random.in_box(4);
         const Vec3 n = cross(v1 - v0, v2 - v0);
@@ -404,24 +416,18 @@ TEST(triangle_random_rays_match_closed_form) {
         const Vec3 aim = v0 + (v1 - v0) * a + (v2 - v0) * b;
         Ray ray = ray_toward(random, aim);
         if (i % 5 == 0) ray.direction = random.unit_vector();
-        const auto crossing = plane_crossing(v0, n, ray);
-        bool inside = false;
-        if (crossing) {
-            const Barycentric w = barycentric(v0, v1, v2, ray.at(*crossing));
+        check_flat_ray(s, ray, v0, n, counts, [&](const Vec3& p, double t) {
+            const Barycentric w = barycentric(v0, v1, v2, p);
             const double nearest_edge =
                 std::min({std::fabs(w.w0), std::fabs(w.w1), std::fabs(w.w2)});
-            if (nearest_edge < 1e-9 * (1 + *crossing)) {
-                ++skipped;
-                continue;
-            }
-            inside = w.w0 >= 0 && w.w1 >= 0 && w.w2 >= 0;
+            if (nearest_edge < 1e-9 * (1 + t)) return Place::edge;
             CHECK_NEAR(w.w0 + w.w1 + w.w2, 1, 1e-9);
-        }
-        (check_ray(s, ray, crossing, inside, normalized(n)) ? hits : misses)++;
+            return w.w0 >= 0 && w.w1 >= 0 && w.w2 >= 0 ? Place::on : Place::off;
+        });
     }
-    CHECK(hits > 4000);
-    CHECK(misses > 4000);
-    CHECK(skipped < 10);
+    CHECK(counts.hits > 4000);
+    CHECK(counts.misses > 4000);
+    CHECK(counts.skipped < 10);
 }
 
 TEST(triangle_normal_follows_the_vertex_order) {
@@ -514,7 +520,7 @@ TEST(triangles_sharing_an_edge_leave_no_gap_beside_it) {
 
 TEST(parallelogram_random_rays_match_closed_form) {
     Random random(6);
-    int hits = 0, misses = 0, skipped = 0;
+    RayCounts counts;
     for (int i = 0; i < 20000; ++i) {
         const Vec3 v = random.in_box(4), a = random.in_box(3), b = random.in_box(3);
         const Vec3 n = cross(a, b);
@@ -523,23 +529,18 @@ TEST(parallelogram_random_rays_match_closed_form) {
         const Vec3 aim = v + a * random.uniform(-0.3, 1.3) + b * random.uniform(-0.3, 1.3);
         Ray ray = ray_toward(random, aim);
         if (i % 5 == 0) ray.direction = random.unit_vector();
-        const auto crossing = plane_crossing(v, n, ray);
-        bool inside = false;
-        if (crossing) {
-            const EdgeCoordinates q = edge_coordinates(v, a, b, ray.at(*crossing));
+        check_flat_ray(s, ray, v, n, counts, [&](const Vec3& p, double t) {
+            const EdgeCoordinates q = edge_coordinates(v, a, b, p);
             const double nearest_edge = std::min({std::fabs(q.alpha), std::fabs(1 - q.alpha),
                                                   std::fabs(q.beta), std::fabs(1 - q.beta)});
-            if (nearest_edge < 1e-9 * (1 + *crossing)) {
-                ++skipped;
-                continue;
-            }
-            inside = q.alpha >= 0 && q.alpha <= 1 && q.beta >= 0 && q.beta <= 1;
-        }
-        (check_ray(s, ray, crossing, inside, normalized(n)) ? hits : misses)++;
+            if (nearest_edge < 1e-9 * (1 + t)) return Place::edge;
+            const bool inside = q.alpha >= 0 && q.alpha <= 1 && q.beta >= 0 && q.beta <= 1;
+            return inside ? Place::on : Place::off;
+        });
     }
-    CHECK(hits > 4000);
-    CHECK(misses > 4000);
-    CHECK(skipped < 10);
+    CHECK(counts.hits > 4000);
+    CHECK(counts.misses > 4000);
+    CHECK(counts.skipped < 10);
 }
 
 TEST(parallelogram_edges_corners_and_bounds) {

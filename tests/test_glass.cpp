@@ -6,6 +6,7 @@
 #include <numbers>
 #include <string>
 
+#include "rt/optics.h"
 #include "rt/trace.h"
 #include "scene_util.h"
 
@@ -158,7 +159,7 @@ TEST(reflected_and_refracted_weights_add_up_to_one) {
     for (const Spectrum absorption : {Spectrum(0.0), Spectrum(0.5, 2.0, 40.0)}) {
         const Scene scene =
             parse_scene(join(kTestViewer, "103 1 1 1\n2 0  0 0 1 ", clear_glass(1.5, absorption)));
-        const Tracer tracer(scene, exhaustive());
+        Tracer tracer(scene, exhaustive());
         for (int i = 0; i < 200; ++i) {
             Vec3 d = random.unit_vector();
             if (std::fabs(d.z) < 1e-3) continue;
@@ -271,7 +272,7 @@ TEST(total_internal_reflection_inside_a_glass_sphere) {
         RenderOptions options;
         options.min_weight = 0;
         options.max_depth = depth;
-        const Tracer tracer(scene, options);
+        Tracer tracer(scene, options);
         const auto from_inside = [&](double theta) {
             return tracer.trace({{0, std::sin(theta), 0}, {1, 0, 0}}, 0, 1, 1.5, Spectrum(a))[0];
         };
@@ -316,7 +317,7 @@ TEST(glass_blocks_shadow_rays) {
     const Scene scene =
         parse_scene(join(kTestViewer, "113 0 -1 0  1 1 1\n", "1 1  0 3 0  ",
                          clear_glass(1.5, Spectrum(0.0)), "\n2 0  0 1 0  100 1 1 1 0 1 1 0 1\n"));
-    const Tracer tracer(scene, {});
+    Tracer tracer(scene, {});
     CHECK_NEAR(tracer.trace({{0, 1, 0.5}, {0, -1, 0}}), Spectrum(0.0), 0);
     CHECK_NEAR(tracer.trace({{3, 1, 0.5}, {0, -1, 0}}), Spectrum(1.0), 1e-15);
 }
@@ -326,7 +327,7 @@ TEST(glass_inside_other_surfaces) {
     const Scene scene =
         parse_scene(join(kTestViewer, "103 1 1 1\n2 0  0 0 1  107 1  ",
                          clear_glass(1.5, Spectrum(0.0)), "  100 0 0 0 0 1 0 0 1\n"));
-    const Tracer tracer(scene, exhaustive());
+    Tracer tracer(scene, exhaustive());
     CHECK_NEAR(tracer.trace({{0.5, 0.5, 5}, {0, 0, -1}}), Spectrum(1.0), 1e-15);  // glass
     CHECK_NEAR(tracer.trace({{1.5, 0.5, 5}, {0, 0, -1}}), Spectrum(0.0), 0);      // black
 }

@@ -18,7 +18,7 @@
 #include "rt/image_compare.h"
 #include "scene/texture.h"
 #include "rt/reader.h"
-#include "rt/trace.h"
+#include "rt/render.h"
 
 namespace fs = std::filesystem;
 

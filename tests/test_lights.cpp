@@ -6,6 +6,7 @@
 #include <thread>
 #include <vector>
 
+#include "rt/render.h"
 #include "rt/trace.h"
 #include "scene_util.h"
 
@@ -459,7 +460,7 @@ TEST(sphere_light_soft_shadow_through_the_tracer) {
                                        light_centre.z, setup.r, 1, 1, 1}),
                      "\n", object_text(1, {setup.b, blocker.x, blocker.y, blocker.z}),
                      " 100  1 1 1  0 1 1 0 1\n"));
-            const Tracer tracer(scene, options);
+            Tracer tracer(scene, options);
             const Light& light = scene.lights.at(0);
             int clear = 0;
             for (int i = 0; i < n; ++i) {
@@ -541,7 +542,7 @@ TEST(directional_light_on_a_plane_by_hand) {
                                          "113  0 -1 -1  2 2 2\n"));
     RenderOptions options;
     options.reflection = false;  // the mirror ray would bring back the (black) sky anyway
-    const Tracer tracer(scene, options);
+    Tracer tracer(scene, options);
     const double c = 1 / std::sqrt(2.0);
     const Spectrum expected = Spectrum(2 * (0.8 * 1 * c + 0.3 / 4), 2 * (0.8 * 0.5 * c + 0.3 / 4),
                                        2 * (0.8 * 0.25 * c + 0.3 / 4));

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "rt/optics.h"
 #include "rt/reader.h"
 #include "rt/trace.h"
 #include "scene_util.h"

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "cli_util.h"
-#include "rt/trace.h"
+#include "rt/render.h"
 #include "scene_util.h"
 
 using namespace rt;

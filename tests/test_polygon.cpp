@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "random_rays.h"
 #include "scene_util.h"
 
 using namespace rt;
@@ -79,7 +80,8 @@ std::string polygon_scene(const std::string& rest) {
 
 TEST(random_rays_on_random_stars_match_fan_test) {
     Random random(11);
-    int hits = 0, misses = 0, skipped = 0, notch_misses = 0;
+    RayCounts counts;
+    int notch_misses = 0;
     for (int i = 0; i < 20000; ++i) {
         const int tips = 3 + static_cast<int>(random.uniform(0, 6));
         const double outer = random.uniform(0.5, 3);
@@ -112,40 +114,29 @@ TEST(random_rays_on_random_stars_match_fan_test) {
         }
         // The closed form: distance to the plane, then the fan test in plane coordinates.
         const double facing = dot(e3, ray.direction);
-        std::optional<double> expected;
-        bool ambiguous = false;
+        ClosedForm expected;
         if (!parallel) {
             const double t = dot(e3, origin - ray.origin) / facing;
             const Vec3 rel = ray.at(t) - origin;
             const Point2 p{dot(rel, e1), dot(rel, e2)};
             for (std::size_t k = 0; k < star.size(); ++k)
                 if (segment_distance(p, star[k], star[(k + 1) % star.size()]) < 1e-7)
-                    ambiguous = true;
-            if (t > 1e-6 && inside_star(star, p)) expected = t;
+                    expected.ambiguous = true;
+            if (t > 1e-6 && inside_star(star, p)) expected.t = t;
             // Within the tips' circle but outside the star: in a concave notch.
-            if (t > 1e-6 && !expected && std::hypot(p.x, p.y) < outer) ++notch_misses;
+            if (t > 1e-6 && !expected.t && std::hypot(p.x, p.y) < outer) ++notch_misses;
         }
-        if (ambiguous) {
-            ++skipped;
-            continue;
-        }
-        const auto hit = first_hit(s, ray);
-        CHECK_EQ(hit.has_value(), expected.has_value());
-        if (!hit || !expected) {
-            ++misses;
-            continue;
-        }
-        ++hits;
-        CHECK_NEAR(hit->t, *expected, 1e-9 * (1 + *expected) / std::fabs(facing));
-        const Vec3 p = ray.at(hit->t);
-        CHECK_NEAR(dot(p - origin, e3), 0.0, 1e-9 * (1 + hit->t));
-        CHECK_NEAR(s.normal(p, *hit), reversed ? -e3 : e3, 1e-12);
+        const auto found = compare_first_hit(s, ray, expected, 1e-9, counts, std::fabs(facing));
+        if (!found) continue;
+        const Vec3 p = found->point;
+        CHECK_NEAR(dot(p - origin, e3), 0.0, 1e-9 * (1 + found->hit.t));
+        CHECK_NEAR(s.normal(p, found->hit), reversed ? -e3 : e3, 1e-12);
         CHECK(s.bounds().contains(p, 1e-9));
     }
-    CHECK(hits > 4000);
-    CHECK(misses > 5000);
+    CHECK(counts.hits > 4000);
+    CHECK(counts.misses > 5000);
     CHECK(notch_misses > 500);
-    CHECK(skipped < 100);
+    CHECK(counts.skipped < 100);
 }
 
 TEST(even_odd_rule_on_a_pentagram_drawn_with_five_vertices) {

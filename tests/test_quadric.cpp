@@ -9,6 +9,7 @@
 #include <limits>
 #include <optional>
 
+#include "random_rays.h"
 #include "rt/trace.h"
 #include "scene_util.h"
 
@@ -159,35 +160,27 @@ Ray random_ray(Random& random, const Vec3& centre, double spread, int i) {
 
 TEST(sphere_as_quadric_matches_sphere_formula) {
     Random random(13);
-    int hits = 0, misses = 0;
+    RayCounts counts;
     for (int i = 0; i < 20000; ++i) {
         const double r = random.uniform(0.1, 3);
         const Vec3 c = random.in_box(5);
         const Spec spec = place({1, 1, 1}, {}, -r * r, c);
         const Shape shape = spec.shape();
-        const Vec3 o = i % 3 == 0 ? c + random.in_box(r * 0.55) : random.in_box(10);
-        const Vec3 aim = c + random.in_box(r * 1.5);
-        const Ray ray{o, i % 4 ? normalized(aim - o) : random.unit_vector()};
-        const auto expected = sphere_distance(c, r, ray);
-        const auto hit = first_hit(shape, ray);
-        CHECK_EQ(hit.has_value(), expected.has_value());
-        if (!hit || !expected) {
-            ++misses;
-            continue;
-        }
-        ++hits;
-        CHECK_NEAR(hit->t, *expected, 1e-9 * (1 + *expected));
-        const Vec3 p = ray.at(hit->t);
-        CHECK_NEAR(shape.normal(p, *hit), (p - c) / r, 1e-9);
+        const Ray ray = ray_at_ball(random, c, r, i);
+        const auto found =
+            compare_first_hit(shape, ray, {sphere_distance(c, r, ray)}, 1e-9, counts);
+        if (!found) continue;
+        const Vec3 p = found->point;
+        CHECK_NEAR(shape.normal(p, found->hit), (p - c) / r, 1e-9);
         CHECK(shape.bounds().contains(p, 1e-9));
     }
-    CHECK(hits > 5000);
-    CHECK(misses > 5000);
+    CHECK(counts.hits > 5000);
+    CHECK(counts.misses > 5000);
 }
 
 TEST(cylinder_as_quadric_matches_closed_form) {
     Random random(14);
-    int hits = 0;
+    RayCounts counts;
     for (int i = 0; i < 20000; ++i) {
         const double r = random.uniform(0.1, 2);
         const Vec3 c = random.in_box(3);
@@ -202,28 +195,25 @@ TEST(cylinder_as_quadric_matches_closed_form) {
         const Vec3 o_across = oc - dot(oc, axis) * axis;
         const Vec3 d_across = ray.direction - dot(ray.direction, axis) * axis;
         const double a = length_squared(d_across);
-        std::optional<double> expected;
+        ClosedForm expected;
         if (a > 1e-12) {
             const double along = -dot(o_across, d_across) / a;
             const double miss2 = length_squared(o_across + along * d_across);
             if (miss2 <= r * r) {
                 const double half = std::sqrt((r * r - miss2) / a);
                 if (along - half > 1e-9)
-                    expected = along - half;
+                    expected.t = along - half;
                 else if (along + half > 1e-9)
-                    expected = along + half;
+                    expected.t = along + half;
             }
         }
-        const auto hit = first_hit(shape, ray);
-        CHECK_EQ(hit.has_value(), expected.has_value());
-        if (!hit || !expected) continue;
-        ++hits;
-        CHECK_NEAR(hit->t, *expected, 1e-9 * (1 + *expected));
-        const Vec3 p = ray.at(hit->t);
+        const auto found = compare_first_hit(shape, ray, expected, 1e-9, counts);
+        if (!found) continue;
+        const Vec3 p = found->point;
         const Vec3 radial = (p - c) - dot(p - c, axis) * axis;
-        CHECK_NEAR(shape.normal(p, *hit), radial / r, 1e-8);
+        CHECK_NEAR(shape.normal(p, found->hit), radial / r, 1e-8);
     }
-    CHECK(hits > 5000);
+    CHECK(counts.hits > 5000);
 }
 
 TEST(every_form_matches_the_long_double_reference) {

@@ -10,7 +10,7 @@
 #include "check.h"
 #include "cli_util.h"
 #include "rt/reader.h"
-#include "rt/trace.h"
+#include "rt/render.h"
 
 namespace fs = std::filesystem;
 using namespace rt;

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "rt/optics.h"
+#include "rt/render.h"
 #include "rt/trace.h"
 #include "scene_util.h"
 
@@ -67,7 +69,7 @@ TEST(shadow_blocks_light_but_not_ambient) {
     // beside it: use the tracer directly with a ray that misses the blocker.
     const Scene s = parse_scene(scene);
     RenderOptions options;
-    const Tracer tracer(s, options);
+    Tracer tracer(s, options);
     const Ray ray{{0, 0, 3}, {0, 0, -1}};  // starts past the blocker
     // The mirror term sees the blocker's unlit underside: ks 0.5 x ambient 0.5 x kd 1.
     const Spectrum mirror(0.25);
@@ -191,7 +193,7 @@ TEST(glass_sphere_bends_the_ray_as_the_index_bookkeeping_says) {
                               object_text(3, {spot.x, spot.y, spot.z, 0, 0, 1, 0.05}) +
                               " 100 1 0 0 0 1 1 0 1\n" + "2 -10.001 0 0 1  100 0 0 1 0 1 1 0 1\n";
     const Scene s = parse_scene(scene);
-    const Tracer tracer(s, {});
+    Tracer tracer(s, {});
     CHECK_NEAR(tracer.trace({{0, h, 5}, {0, 0, -1}}), Spectrum(1.0, 0.0, 0.0), 1e-12);
     // A ray through the centre is not bent at all and sees the screen.
     CHECK_NEAR(tracer.trace({{0, 0, 5}, {0, 0, -1}}), Spectrum(0.0, 0.0, 1.0), 1e-12);
@@ -207,7 +209,7 @@ TEST(total_internal_reflection_moves_kt_to_reflection) {
     const Scene s = parse_scene(scene);
     RenderOptions options;
     options.min_weight = 0;
-    const Tracer tracer(s, options);
+    Tracer tracer(s, options);
     const auto from_inside = [&](double angle_degrees) {
         // From the centre offset so that the ray hits the surface at the given angle.
         const double a = angle_degrees * std::numbers::pi / 180;
@@ -306,9 +308,9 @@ TEST(supersampling_sums_the_expected_rays) {
     for (int n : {1, 2, 3, 4}) {
         RenderOptions options;
         options.samples = n;
-        const Tracer tracer(s, options);
+        Tracer tracer(s, options);
         options.samples = 1;
-        const Tracer reference(s, options);
+        Tracer reference(s, options);
         Spectrum sum(0.0);
         for (int j = 0; j < n; ++j)
             for (int i = 0; i < n; ++i)

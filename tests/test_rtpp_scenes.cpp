@@ -16,7 +16,7 @@
 #include "scene/lexer.h"
 #include "scene/texture.h"
 #include "rt/reader.h"
-#include "rt/trace.h"
+#include "rt/render.h"
 #include "rtpp/compiler.h"
 
 namespace fs = std::filesystem;

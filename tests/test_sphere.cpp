@@ -1,6 +1,7 @@
 // Sphere (ID 1) against the closed form: the geometric solution of the ray-sphere problem.
 #include <cmath>
 
+#include "random_rays.h"
 #include "scene_util.h"
 
 using namespace rt;
@@ -8,33 +9,23 @@ using namespace rt_test;
 
 TEST(random_rays_match_closed_form) {
     Random random(1);
-    int hits = 0, misses = 0, inside = 0;
+    RayCounts counts;
+    int inside = 0;
     for (int i = 0; i < 20000; ++i) {
         const double r = random.uniform(0.1, 3);
         const Vec3 c = random.in_box(5);
         const Shape s = parse_shape(object_text(1, {r, c.x, c.y, c.z}));
-        // Half the rays aim near the sphere, so hits and misses both occur often.
-        // A third of the rays start inside; of the rest, most aim near the sphere.
-        const Vec3 o = i % 3 == 0 ? c + random.in_box(r * 0.55) : random.in_box(10);
-        const Vec3 aim = c + random.in_box(r * 1.5);
-        const Ray ray{o, i % 4 ? normalized(aim - o) : random.unit_vector()};
-        const auto expected = sphere_distance(c, r, ray);
-        const auto hit = first_hit(s, ray);
-        CHECK_EQ(hit.has_value(), expected.has_value());
-        if (!hit || !expected) {
-            ++misses;
-            continue;
-        }
-        ++hits;
-        if (length(o - c) < r) ++inside;
-        CHECK_NEAR(hit->t, *expected, 1e-9 * (1 + *expected));
-        const Vec3 p = ray.at(hit->t);
+        const Ray ray = ray_at_ball(random, c, r, i);
+        const auto found = compare_first_hit(s, ray, {sphere_distance(c, r, ray)}, 1e-9, counts);
+        if (!found) continue;
+        if (length(ray.origin - c) < r) ++inside;
+        const Vec3 p = found->point;
         CHECK_NEAR(length(p - c), r, 1e-9);
-        CHECK_NEAR(s.normal(p, *hit), (p - c) / r, 1e-9);
+        CHECK_NEAR(s.normal(p, found->hit), (p - c) / r, 1e-9);
         CHECK(s.bounds().contains(p, 1e-9));
     }
-    CHECK(hits > 5000);
-    CHECK(misses > 5000);
+    CHECK(counts.hits > 5000);
+    CHECK(counts.misses > 5000);
     CHECK(inside > 100);
 }
 

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "scene/texture.h"
-#include "rt/trace.h"
+#include "rt/render.h"
 #include "scene_util.h"
 
 using namespace rt;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <optional>
 
+#include "rt/optics.h"
 #include "rt/trace.h"
 #include "scene_util.h"
 
@@ -370,7 +371,7 @@ TEST(scenes_have_no_holes_or_acne) {
     for (const char* name : {"torus.in", "torus-inside.in"}) {
         const Scene scene = read_scene_file(join(RT_SOURCE_DIR, "/scenes/", name));
         const RenderOptions options;
-        const Tracer tracer(scene, options);
+        Tracer tracer(scene, options);
         const bool inside_view = std::string(name) == "torus-inside.in";
         int holes = 0, acne = 0, leaving_rays = 0;
         constexpr int kSubsamples = 2;

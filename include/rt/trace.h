@@ -1,7 +1,6 @@
-// The recursive tracer of sections 1.6 to 1.10 of the original.
+// The recursive tracer of sections 1.6 to 1.10 of the original: what one ray brings back.
 #pragma once
 
-#include <atomic>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -19,17 +18,6 @@ inline constexpr double kHitTolerance = 1e-7;
 
 // The smallest distance a hit along a ray from `origin` may have.
 double hit_tolerance(const Vec3& origin);
-
-// The mirror direction of `incoming` about a unit normal.
-Vec3 reflect(const Vec3& incoming, const Vec3& normal);
-// The direction refracted by Snell's law for a unit incoming direction and a unit normal that
-// faces it (dot(incoming, normal) <= 0), where eta = n1 / n2. Nothing on total internal
-// reflection.
-std::optional<Vec3> refract(const Vec3& incoming, const Vec3& normal, double eta);
-// The Fresnel reflectance F = (R_s + R_p) / 2 of unpolarised light meeting, at an angle whose
-// cosine is cos_i, the boundary from a medium of index n1 into one of index n2: the fraction
-// reflected (1 - F passes through). 1 on total internal reflection.
-double fresnel_reflectance(double cos_i, double n1, double n2);
 
 struct SceneHit {
     const Object* object;
@@ -57,8 +45,9 @@ struct RenderStats {
     }
 };
 
-// Traces rays through a scene. A Tracer counts the rays it traces, so each thread uses its
-// own; the scene is shared read-only. With options.accelerate (the default) the scene's
+// Traces rays through a scene. A Tracer counts the rays it traces and remembers the last
+// blocker of each light, so tracing changes it and each thread uses its own; the scene is
+// shared read-only. With options.accelerate (the default) the scene's
 // index must have been built (read_scene does), or construction throws std::logic_error.
 class Tracer {
   public:
@@ -68,27 +57,27 @@ class Tracer {
     // ior and absorption those of the medium the ray travels in: what the ray brings back from
     // a hit at distance t is multiplied by exp(-absorption t).
     Spectrum trace(const Ray& ray, int depth = 0, double weight = 1, double ior = 1,
-                   const Spectrum& absorption = Spectrum(0.0)) const;
+                   const Spectrum& absorption = Spectrum(0.0));
     // A primary ray's value in the current render mode.
-    Spectrum shade_primary(const Ray& ray) const;
+    Spectrum shade_primary(const Ray& ray);
     // The value of pixel (x, y): the mean of options.samples^2 primary rays on a grid centred
     // on the original's ray through (x, y). traced_centre, when given, is that ray's value,
     // already traced: an odd grid, whose middle sample is that ray, uses it instead of
     // tracing the ray again (the sum is the same, bit for bit).
-    Spectrum pixel(int x, int y, const Spectrum* traced_centre = nullptr) const;
+    Spectrum pixel(int x, int y, const Spectrum* traced_centre = nullptr);
     // The value of the original's one ray through pixel (x, y), whatever options.samples is.
-    Spectrum one_ray(int x, int y) const { return shade_primary(scene_.viewer.primary_ray(x, y)); }
+    Spectrum one_ray(int x, int y) { return shade_primary(scene_.viewer.primary_ray(x, y)); }
 
-    std::optional<SceneHit> closest_hit(const Ray& ray) const;
+    std::optional<SceneHit> closest_hit(const Ray& ray);
     // True when any object lies along the ray closer than `distance`.
-    bool blocked(const Ray& ray, double distance) const;
+    bool blocked(const Ray& ray, double distance);
 
     const RenderStats& stats() const { return stats_; }
 
   private:
-    bool blocked(const Ray& ray, double distance, LastBlocker* last) const;
+    bool blocked(const Ray& ray, double distance, LastBlocker* last);
     Spectrum direct_light(const Vec3& point, const Vec3& facing_normal, const Vec3& reflected,
-                          const Material& m, double ks) const;
+                          const Material& m, double ks);
     bool may_trace(int depth, double weight) const {
         return depth <= options_.max_depth && weight >= options_.min_weight;
     }
@@ -96,45 +85,9 @@ class Tracer {
     const Scene& scene_;
     const ObjectIndex* index_;  // the scene's hierarchy, when options_.accelerate
     RenderOptions options_;  // a copy: small, and safe when built from a temporary
-    // Counting is not part of what a trace computes, so the const methods may count.
-    mutable RenderStats stats_;
+    RenderStats stats_;
     // Per light, the object that last blocked a shadow ray toward it.
-    mutable std::vector<LastBlocker> last_blockers_;
+    std::vector<LastBlocker> last_blockers_;
 };
-
-// The number of threads a render uses for RenderOptions::threads (0: one per hardware thread).
-int worker_threads(int requested);
-
-// Renders every pixel of the scene's viewer. Rows are shared among threads, and each pixel
-// depends on nothing else, so the result is the same whatever the number of threads. With
-// options.adaptive_threshold, every pixel is first traced with the original's one ray, and
-// only the pixels that differ from a 4-connected neighbour by more than the threshold (in some
-// component, both clamped to [0, 1]) are replaced by their options.samples^2 grid: exactly the
-// value Tracer::pixel gives them. When stats is given, the counts of every thread are added
-// into it.
-// What a render has done so far, for a progress display on another thread. Each thread
-// publishes once per row it finishes: rows of every pass that traces, and rays traced.
-struct RenderProgress {
-    std::atomic<std::uint64_t> rows_total{0};
-    std::atomic<std::uint64_t> rows_done{0};
-    std::atomic<std::uint64_t> rays{0};
-};
-
-Raster render(const Scene& scene, const RenderOptions& options, RenderStats* stats = nullptr,
-              RenderProgress* progress = nullptr);
-
-// The viewer's whole image as a rectangle.
-inline PixelRect image_rect(const Viewer& v) { return {0, 0, v.xres, v.yres}; }
-
-// Renders only `region` (within the viewer's image, not empty; std::invalid_argument
-// otherwise) into a raster of its size. Each pixel is traced at its own place in the full
-// image, and adaptive decisions see the one-ray values of a one-pixel margin around the
-// region, so every pixel equals the same pixel of render(), whatever the thread count.
-Raster render_region(const Scene& scene, const RenderOptions& options, const PixelRect& region,
-                     RenderStats* stats = nullptr, RenderProgress* progress = nullptr);
-
-// The threads render_region uses: options.threads (or one per hardware thread), but never
-// more than the region has rows, since rows are what they share.
-int render_threads(const RenderOptions& options, const PixelRect& region);
 
 }  // namespace rt

@@ -24,7 +24,7 @@
 #include "rt/error.h"
 #include "rt/image_io.h"
 #include "rt/reader.h"
-#include "rt/trace.h"
+#include "rt/render.h"
 
 namespace rt {
 

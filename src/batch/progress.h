@@ -9,7 +9,7 @@
 #include <string>
 #include <thread>
 
-#include "rt/trace.h"
+#include "rt/render.h"
 
 namespace rt {
 

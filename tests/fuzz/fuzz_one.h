@@ -12,7 +12,7 @@
 
 #include "rt/error.h"
 #include "rt/reader.h"
-#include "rt/trace.h"
+#include "rt/render.h"
 
 namespace rt_fuzz {
 

@@ -1,0 +1,50 @@
+// The image loop: every pixel of an image, or of a region of it, traced on threads that
+// share its rows.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+
+#include "rt/options.h"
+#include "rt/raster.h"
+#include "rt/scene.h"
+#include "rt/trace.h"
+
+namespace rt {
+
+// What a render has done so far, for a progress display on another thread. Each thread
+// publishes once per row it finishes: rows of every pass that traces, and rays traced.
+struct RenderProgress {
+    std::atomic<std::uint64_t> rows_total{0};
+    std::atomic<std::uint64_t> rows_done{0};
+    std::atomic<std::uint64_t> rays{0};
+};
+
+// Renders every pixel of the scene's viewer. Rows are shared among threads, and each pixel
+// depends on nothing else, so the result is the same whatever the number of threads. With
+// options.adaptive_threshold, every pixel is first traced with the original's one ray, and
+// only the pixels that differ from a 4-connected neighbour by more than the threshold (in some
+// component, both clamped to [0, 1]) are replaced by their options.samples^2 grid: exactly the
+// value Tracer::pixel gives them. When stats is given, the counts of every thread are added
+// into it.
+Raster render(const Scene& scene, const RenderOptions& options, RenderStats* stats = nullptr,
+              RenderProgress* progress = nullptr);
+
+// The viewer's whole image as a rectangle.
+inline PixelRect image_rect(const Viewer& v) { return {0, 0, v.xres, v.yres}; }
+
+// Renders only `region` (within the viewer's image, not empty; std::invalid_argument
+// otherwise) into a raster of its size. Each pixel is traced at its own place in the full
+// image, and adaptive decisions see the one-ray values of a one-pixel margin around the
+// region, so every pixel equals the same pixel of render(), whatever the thread count.
+Raster render_region(const Scene& scene, const RenderOptions& options, const PixelRect& region,
+                     RenderStats* stats = nullptr, RenderProgress* progress = nullptr);
+
+// The number of threads a render uses for RenderOptions::threads (0: one per hardware thread).
+int worker_threads(int requested);
+
+// The threads render_region uses: options.threads (or one per hardware thread), but never
+// more than the region has rows, since rows are what they share.
+int render_threads(const RenderOptions& options, const PixelRect& region);
+
+}  // namespace rt

@@ -1,0 +1,211 @@
+#include "rt/trace.h"
+
+#include "accel/object_index.h"
+#include "rt/optics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace rt {
+
+double hit_tolerance(const Vec3& origin) { return kHitTolerance * (1 + max_abs_component(origin)); }
+
+namespace {
+
+// How a surface shares out the light it does not scatter: the weights of the highlight, of
+// the reflected ray and of the refracted ray, and the refracted direction (none on total
+// internal reflection, or where nothing is transmitted).
+struct Split {
+    double highlight;
+    double mirror;
+    double transmit;
+    std::optional<Vec3> refracted;
+};
+
+// For a ray going from index n1 into n2 through a surface whose normal faces it.
+Split split_light(const Material& m, const Vec3& incoming, const Vec3& facing, double n1, double n2,
+                  bool refraction) {
+    Split split{m.ks, m.ks, m.kt, std::nullopt};
+    if (m.fresnel) {
+        // A dielectric (114): F reflected, 1 - F transmitted; the highlight keeps ks. F is
+        // needed for the mirror even when refraction is switched off.
+        split.refracted = refract(incoming, facing, n1 / n2);
+        split.mirror = split.refracted ? fresnel_reflectance(-dot(incoming, facing), n1, n2) : 1.0;
+        split.transmit = 1 - split.mirror;
+    } else if (m.kt > 0 && refraction) {
+        split.refracted = refract(incoming, facing, n1 / n2);
+        // On total internal reflection kt joins ks, for the highlight and the mirror alike.
+        if (!split.refracted) {
+            split.highlight += m.kt;
+            split.mirror += m.kt;
+        }
+    }
+    return split;
+}
+
+// The fraction of light left after travelling t through a medium of this absorption.
+Spectrum transmittance(const Spectrum& absorption, double t) {
+    Spectrum left;
+    for (std::size_t i = 0; i < kSpectrumComponents; ++i) left[i] = std::exp(-absorption[i] * t);
+    return left;
+}
+
+// Where a switch over RenderMode meets a value outside it. Out of line, so that the code that
+// builds the exception does not stand in the way of inlining its caller.
+[[noreturn]] void not_a_render_mode() {
+    throw std::logic_error("Tracer: not a render mode");
+}
+
+}  // namespace
+
+Tracer::Tracer(const Scene& scene, const RenderOptions& options)
+    : scene_(scene), index_(scene.index.get()), options_(options),
+      last_blockers_(scene.lights.size()) {
+    if (options_.accelerate && (index_ == nullptr || !index_->covers(scene_.objects.size())))
+        throw std::logic_error("Tracer: the scene's index was not built (Scene::build_index)");
+}
+
+std::optional<SceneHit> Tracer::closest_hit(const Ray& ray) {
+    Interval range{hit_tolerance(ray.origin), kInfinity};
+    if (options_.accelerate) {
+        ObjectIndex::Found found;
+        if (!index_->closest(ray, range, found, &stats_.object_tests)) return std::nullopt;
+        return SceneHit{&scene_.objects[found.object], found.hit};
+    }
+    // The linear scan: every object in file order.
+    std::optional<SceneHit> best;
+    stats_.object_tests += scene_.objects.size();
+    for (const Object& object : scene_.objects) {
+        Hit hit;
+        if (object.shape.intersect(ray, range, hit)) {
+            best = SceneHit{&object, hit};
+            range.t_max = hit.t;  // later objects need only beat this
+        }
+    }
+    return best;
+}
+
+bool Tracer::blocked(const Ray& ray, double distance) {
+    return blocked(ray, distance, nullptr);
+}
+
+bool Tracer::blocked(const Ray& ray, double distance, LastBlocker* last) {
+    ++stats_.shadow_rays;
+    const Interval range{hit_tolerance(ray.origin), distance};
+    if (options_.accelerate) return index_->any(ray, range, last, &stats_.object_tests);
+    return std::any_of(scene_.objects.begin(), scene_.objects.end(), [&](const Object& o) {
+        ++stats_.object_tests;
+        return o.shape.intersect_any(ray, range);
+    });
+}
+
+Spectrum Tracer::direct_light(const Vec3& point, const Vec3& facing_normal, const Vec3& reflected,
+                              const Material& m, double ks) {
+    Spectrum total(0.0);
+    for (std::size_t l = 0; l < scene_.lights.size(); ++l) {
+        const Light& light = scene_.lights[l];
+        const int samples = light.sample_count();
+        for (int i = 0; i < samples; ++i) {
+            const LightSample s = light.sample(point, i);
+            const double facing = dot(facing_normal, s.direction);
+            if (!(facing > 0) || s.intensity.is_black()) continue;
+            if (options_.shadows && blocked({point, s.direction}, s.distance, &last_blockers_[l]))
+                continue;
+            Spectrum term(0.0);
+            if (options_.diffuse) term += m.colour * (m.kd * facing);
+            const double highlight = dot(reflected, s.direction);
+            if (options_.specular && ks > 0 && highlight > 0)
+                term += Spectrum(ks * std::pow(highlight, m.ke));
+            total += s.intensity * term;
+        }
+    }
+    return total;
+}
+
+Spectrum Tracer::trace(const Ray& ray, int depth, double weight, double ior,
+                       const Spectrum& absorption) {
+    if (depth == 0) ++stats_.primary_rays;  // secondary rays are counted where they start
+    const auto found = closest_hit(ray);
+    // A ray that escapes brings back the ambient intensity.
+    if (!found) return scene_.ambient;
+
+    const Object& object = *found->object;
+    const Vec3 point = ray.at(found->hit.t);
+    const Vec3 outward = object.shape.normal(point, found->hit);
+    const bool leaving = dot(ray.direction, outward) > 0;
+    const Vec3 facing = leaving ? -outward : outward;  // d in the Phong model
+    const Material m = object.surface_at(found->hit).at(point);
+    Spectrum result(0.0);
+
+    // Transmission comes first: on total internal reflection its weight joins the mirror's.
+    // The refracted ray enters the medium behind the surface, or leaving returns to air.
+    const double next_ior = leaving ? 1.0 : m.ior;
+    const Split split = split_light(m, ray.direction, facing, ior, next_ior, options_.refraction);
+    const double kt = split.transmit;
+    if (split.refracted && kt > 0 && options_.refraction && may_trace(depth + 1, weight * kt)) {
+        ++stats_.refracted_rays;
+        result += kt * trace({point, *split.refracted}, depth + 1, weight * kt, next_ior,
+                             leaving ? Spectrum(0.0) : m.absorption);
+    }
+
+    if (options_.ambient) result += scene_.ambient * m.colour * m.kd;
+    const Vec3 reflected = reflect(ray.direction, facing);
+    if (options_.diffuse || options_.specular)
+        result += direct_light(point, facing, reflected, m, split.highlight);
+    // The reflected ray stays in the medium it came through.
+    const double ks = split.mirror;
+    if (ks > 0 && options_.reflection && may_trace(depth + 1, weight * ks)) {
+        ++stats_.reflected_rays;
+        result += ks * trace({point, reflected}, depth + 1, weight * ks, ior, absorption);
+    }
+    // Light from this hit crossed the medium for found->hit.t on its way back.
+    if (!absorption.is_black()) result *= transmittance(absorption, found->hit.t);
+    return result;
+}
+
+Spectrum Tracer::shade_primary(const Ray& ray) {
+    if (options_.mode == RenderMode::trace) return trace(ray);
+    // The other modes show one property of the first hit, and black where the ray escapes.
+    ++stats_.primary_rays;
+    const auto found = closest_hit(ray);
+    if (!found) return Spectrum(0.0);
+    const Vec3 point = ray.at(found->hit.t);
+    switch (options_.mode) {
+        case RenderMode::depth:
+            return Spectrum(std::min(1.0, 1 / found->hit.t));
+        case RenderMode::colour:
+            return found->object->surface_at(found->hit).at(point).colour;
+        case RenderMode::normal: {
+            const Vec3 n = found->object->shape.normal(point, found->hit);
+            return Spectrum(std::fabs(dot(n, ray.direction)));
+        }
+        case RenderMode::trace:  // traced above
+            break;
+    }
+    not_a_render_mode();
+}
+
+Spectrum Tracer::pixel(int x, int y, const Spectrum* traced_centre) {
+    const int n = options_.samples;
+    if (n <= 1) return traced_centre != nullptr ? *traced_centre : one_ray(x, y);
+    // An n x n grid centred on the original's ray (offsets (k + 1/2)/n - 1/2), so that every n
+    // renders the same geometry. For odd n the middle offset is exactly 0: that sample is the
+    // original's ray itself, and a value already traced for it can stand in, bit for bit.
+    const int middle = n % 2 == 1 ? n / 2 : -1;
+    Spectrum sum(0.0);
+    for (int j = 0; j < n; ++j) {
+        const double v = (j + 0.5) / n - 0.5;
+        for (int i = 0; i < n; ++i) {
+            if (traced_centre != nullptr && i == middle && j == middle) {
+                sum += *traced_centre;
+                continue;
+            }
+            const double u = (i + 0.5) / n - 0.5;
+            sum += shade_primary(scene_.viewer.primary_ray(x + u, y + v));
+        }
+    }
+    return sum * (1.0 / (n * n));
+}
+
+}  // namespace rt
