@@ -10,29 +10,17 @@
 #include <string_view>
 #include <vector>
 
-#include "scene/lexer.h"
 #include "rt/light.h"
-#include "scene/texture.h"
+#include "rt/limits.h"  // the bounds the reader holds a scene to
 #include "rt/primitive.h"
 #include "rt/scene.h"
 #include "rt/surface.h"
+#include "scene/lexer.h"
+#include "scene/texture.h"
 
 namespace rt {
 
 struct Image;
-
-// Affine primitives, surfaces and lights and checker surfaces hold other objects; input that
-// nests them deeper than this is refused, so no input can overflow the stack.
-inline constexpr int kMaxNesting = 32;
-
-// The largest image rt will allocate, in pixels per side and in total; a viewer asking for
-// more is an error before anything is allocated.
-inline constexpr long kMaxResolution = 16384;
-inline constexpr long kMaxPixels = 64L * 1024 * 1024;
-
-// The most light samples a scene may take in all (a point light takes one, a sphere light n):
-// each is a shadow ray for every point lit, so this bounds the cost of lighting one point.
-inline constexpr long kMaxLightSamples = 1L << 20;
 
 // Reads one scene. The read functions of the object tables call back into it for their
 // numbers, so every error they report carries a place in the file.

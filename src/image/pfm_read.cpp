@@ -5,7 +5,7 @@
 
 #include "rt/error.h"
 #include "rt/image_file.h"
-#include "scene/texture.h"
+#include "rt/limits.h"
 
 namespace rt {
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common/message_text.h"  // how messages show a token
+#include "rt/limits.h"
 
 namespace rt {
 
@@ -31,10 +32,6 @@ struct Token {
 
     bool at_end() const { return end; }
 };
-
-// The longest token rt accepts; a longer one is an error, so no input makes the lexer
-// allocate without bound.
-inline constexpr std::size_t kMaxTokenLength = 4096;
 
 class Lexer {
   public:

@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "rt/limits.h"
 #include "rt/raster.h"
 
 namespace rt {
@@ -30,9 +31,6 @@ struct Image {
         return {values[i], values[i + 1], values[i + 2]};
     }
 };
-
-// The largest texture rt reads, in pixels.
-inline constexpr long kMaxImagePixels = 64L * 1024 * 1024;
 
 // A file's identity: the same file under any name (links, ./, ..) has the same one.
 struct FileId {
