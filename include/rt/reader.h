@@ -127,7 +127,9 @@ class SceneReader {
     int threads_ = 1;
 };
 
-// A number rt computed as messages show it (%g); numbers read are shown as written.
+// A number rt computed as messages show it (%g); numbers read are shown as written. Defined
+// with the other message helpers (src/common/message_text.cpp); declared here too for the
+// read functions, which report what they computed.
 std::string format_number(double value);
 
 struct StageTimes;

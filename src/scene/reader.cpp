@@ -8,16 +8,15 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <istream>
 #include <limits>
 
-#include "rt/error.h"
-#include "common/fd_stream.h"
-#include "scene/texture.h"
 #include "batch/statistics.h"
+#include "common/fd_stream.h"
+#include "rt/error.h"
+#include "scene/texture.h"
 
 namespace rt {
 
@@ -59,12 +58,6 @@ std::string line_and_column(Location where) {
 }
 
 }  // namespace
-
-std::string format_number(double value) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", value);
-    return text;
-}
 
 SceneReader::SceneReader(std::istream& in, std::string name, std::filesystem::path base_dir,
                          int threads)
