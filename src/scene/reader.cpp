@@ -211,7 +211,7 @@ std::shared_ptr<const Image> SceneReader::texture(std::string_view what) {
             texture_paths_.end())
             texture_paths_.push_back(resolved);
         if (const auto known = textures_.find(file); known != textures_.end()) return known->second;
-        auto image = std::make_shared<const Image>(read_ppm(resolved));
+        auto image = std::make_shared<const Image>(read_texture(resolved));
         textures_.emplace(file, image);
         return image;
     } catch (const Error& e) {

@@ -1,26 +1,18 @@
-// PPM images: the renderer's output (P6) and textures (P6 or P3).
+// Textures, the images image-mapped surfaces (108) wear: read through the image library (PNG,
+// PPM or PGM, PFM, as the file's first bytes say), from regular files only.
 #pragma once
 
+#include <compare>
 #include <cstdint>
 #include <filesystem>
-#include <ostream>
-#include <string>
-#include <string_view>
 #include <vector>
 
-#include "rt/limits.h"
-#include "rt/raster.h"
+#include "rt/spectrum.h"
 
 namespace rt {
 
-// round(255 * clamp(c, 0, 1)); NaN counts as 0.
-std::uint8_t to_byte(double c);
-
-// Writes the raster as binary PPM (P6, maxval 255), without metadata: encode_image with the
-// default encoding.
-void write_ppm(std::ostream& out, const Raster& raster);
-
-// An image read from a PPM file, components scaled to [0, 1], rows from the top.
+// A texture's colours, rows from the top: PPM and PNG samples divided by the file's maximum
+// value, PFM values as they are (docs/format.md, 108).
 struct Image {
     int width = 0;
     int height = 0;
@@ -43,8 +35,8 @@ struct FileId {
 // otherwise (a FIFO or a device is refused without being opened, so it cannot block).
 FileId texture_file(const std::filesystem::path& path);
 
-// Reads a P6 or P3 regular file; throws rt::Error("<reason>") without a location, which the caller
-// adds.
-Image read_ppm(const std::filesystem::path& path);
+// Reads a texture from a regular file; throws rt::Error("<reason>") without a location, which
+// the caller adds.
+Image read_texture(const std::filesystem::path& path);
 
 }  // namespace rt
