@@ -12,16 +12,9 @@
 
 #include "common/message_text.h"  // how messages show a token
 #include "rt/limits.h"
+#include "rt/location.h"
 
 namespace rt {
-
-// 64-bit counters: a line of more than 2^31 bytes must not wrap into negative columns.
-struct Location {
-    std::int64_t line = 1;
-    std::int64_t column = 1;
-    int file = 0;  // which of the lexer's file names: 0 is the input's own, others come from
-                   // `#line N "path"` markers
-};
 
 struct Token {
     std::string text;

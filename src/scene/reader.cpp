@@ -16,6 +16,7 @@
 #include "batch/statistics.h"
 #include "common/fd_stream.h"
 #include "rt/error.h"
+#include "scene/lexer.h"
 #include "scene/texture.h"
 
 namespace rt {
@@ -61,10 +62,23 @@ std::string line_and_column(Location where) {
 
 SceneReader::SceneReader(std::istream& in, std::string name, std::filesystem::path base_dir,
                          int threads)
-    : lexer_(in, std::move(name)), base_dir_(std::move(base_dir)), threads_(threads) {}
+    : lexer_(std::make_unique<Lexer>(in, std::move(name))),
+      textures_(std::make_unique<TextureCache>()),
+      base_dir_(std::move(base_dir)),
+      threads_(threads) {}
+
+SceneReader::~SceneReader() = default;
+
+Location SceneReader::next_location() { return lexer_->peek().where; }
+
+const std::vector<std::filesystem::path>& SceneReader::texture_paths() const {
+    return textures_->paths();
+}
+
+std::size_t SceneReader::textures_loaded() const { return textures_->files(); }
 
 void SceneReader::fail(Location where, std::string_view message) const {
-    lexer_.fail(where, message);
+    lexer_->fail(where, message);
 }
 
 std::filesystem::path SceneReader::resolve(const std::string& path) const {
@@ -80,7 +94,7 @@ SceneReader::Nest::Nest(SceneReader& reader, Location where) : reader_(reader) {
 }
 
 double SceneReader::number(std::string_view what) {
-    const Token& token = lexer_.next();
+    const Token& token = lexer_->next();
     if (token.at_end()) fail(token.where, "unexpected end of file: expected " + std::string(what));
     ++numbers_read_;
     last_number_ = token.where;
@@ -193,7 +207,7 @@ long SceneReader::id(std::string_view what) {
 }
 
 std::string SceneReader::path(std::string_view what) {
-    const Token& token = lexer_.next();
+    const Token& token = lexer_->next();
     if (token.at_end()) fail(token.where, "unexpected end of file: expected " + std::string(what));
     if (token.text.empty()) fail(token.where, std::string(what) + " must not be empty");
     return token.text;
@@ -204,16 +218,7 @@ std::shared_ptr<const Image> SceneReader::texture(std::string_view what) {
     const std::string written = path(what);
     const std::filesystem::path resolved = resolve(written);
     try {
-        const FileId file = texture_file(resolved);
-        // Every spelling is a dependency: a symbolic link among them can later be pointed
-        // at another file.
-        if (std::find(texture_paths_.begin(), texture_paths_.end(), resolved) ==
-            texture_paths_.end())
-            texture_paths_.push_back(resolved);
-        if (const auto known = textures_.find(file); known != textures_.end()) return known->second;
-        auto image = std::make_shared<const Image>(read_texture(resolved));
-        textures_.emplace(file, image);
-        return image;
+        return textures_->load(resolved);
     } catch (const Error& e) {
         // Paths are shown whole (escaped): a user needs all of one to find the file.
         std::string message =
@@ -302,7 +307,7 @@ std::string SceneReader::previous_object_note(Location error_at, long numbers_re
                                               Location last_number) const {
     if (!last_object_.known) return {};
     const auto place = [&](Location at) {
-        return at.file == error_at.file ? line_and_column(at) : lexer_.place(at);
+        return at.file == error_at.file ? line_and_column(at) : lexer_->place(at);
     };
     const long count = numbers_read - last_object_.numbers_before;
     std::string note = "note: the previous object, " + name_id(last_object_.id) + " at " +
@@ -322,7 +327,7 @@ void SceneReader::fail_at_object_id(Location where, std::string_view message, lo
                                     Location last_number) const {
     const std::string note = previous_object_note(where, numbers_read, last_number);
     if (note.empty()) fail(where, message);
-    throw Error(lexer_.place(where) + ": " + std::string(message) + "\n" + lexer_.place(where) +
+    throw Error(lexer_->place(where) + ": " + std::string(message) + "\n" + lexer_->place(where) +
                 ": " + note);
 }
 
@@ -338,7 +343,7 @@ void SceneReader::read_top_level_object(Scene& scene, bool& have_viewer) {
     } catch (const Error& e) {
         const std::string note = previous_object_note(where, numbers_before, last_number_before);
         if (note.empty()) throw;
-        throw Error(std::string(e.what()) + "\n" + lexer_.place(where) + ": " + note);
+        throw Error(std::string(e.what()) + "\n" + lexer_->place(where) + ": " + note);
     }
     const int small = static_cast<int>(type_id);
     const bool known = find_primitive_type(small) || find_light_type(small) ||
@@ -384,8 +389,8 @@ void SceneReader::read_top_level_object(Scene& scene, bool& have_viewer) {
 Scene SceneReader::read_scene() {
     Scene scene;
     bool have_viewer = false;
-    while (!lexer_.peek().at_end()) read_top_level_object(scene, have_viewer);
-    if (!have_viewer) fail(lexer_.peek().where, "no viewer (102) in the scene; one is required");
+    while (!lexer_->peek().at_end()) read_top_level_object(scene, have_viewer);
+    if (!have_viewer) fail(lexer_->peek().where, "no viewer (102) in the scene; one is required");
     scene.skipped_triangles = skipped_triangles_;
     scene.splits_rays = splits_rays_;
     return scene;

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -96,6 +97,18 @@ Image read_texture(const std::filesystem::path& path) {
     ImageFile file = decode_image(bytes, PpmSamples::as_stored);
     std::string().swap(bytes);  // freed before the colours are made, to lower the peak
     return colours(std::move(file));
+}
+
+std::shared_ptr<const Image> TextureCache::load(const std::filesystem::path& resolved) {
+    const FileId file = texture_file(resolved);
+    // Every spelling is a dependency: a symbolic link among them can later be pointed at
+    // another file.
+    if (std::find(paths_.begin(), paths_.end(), resolved) == paths_.end())
+        paths_.push_back(resolved);
+    if (const auto known = images_.find(file); known != images_.end()) return known->second;
+    auto image = std::make_shared<const Image>(read_texture(resolved));
+    images_.emplace(file, image);
+    return image;
 }
 
 }  // namespace rt

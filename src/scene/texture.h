@@ -5,6 +5,8 @@
 #include <compare>
 #include <cstdint>
 #include <filesystem>
+#include <map>
+#include <memory>
 #include <vector>
 
 #include "rt/spectrum.h"
@@ -38,5 +40,21 @@ FileId texture_file(const std::filesystem::path& path);
 // Reads a texture from a regular file; throws rt::Error("<reason>") without a location, which
 // the caller adds.
 Image read_texture(const std::filesystem::path& path);
+
+// The textures one scene has loaded: each file once, however many surfaces name it, by
+// whatever path.
+class TextureCache {
+  public:
+    // The texture at `resolved`, read the first time its file is named; throws
+    // rt::Error("<reason>") as read_texture does.
+    std::shared_ptr<const Image> load(const std::filesystem::path& resolved);
+    // Every path named so far, each once, in the order first named.
+    const std::vector<std::filesystem::path>& paths() const { return paths_; }
+    std::size_t files() const { return images_.size(); }
+
+  private:
+    std::map<FileId, std::shared_ptr<const Image>> images_;  // by file, not by name
+    std::vector<std::filesystem::path> paths_;
+};
 
 }  // namespace rt
