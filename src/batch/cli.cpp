@@ -345,9 +345,9 @@ std::optional<std::string> region_problem(const PixelRect& region, int width, in
 }
 
 void add_region_metadata(ImageMetadata& metadata, const PixelRect& region, int width, int height) {
-    metadata.set("Region", std::to_string(region.x0) + "," + std::to_string(region.x1) + "," +
+    metadata.set(kRegionKey, std::to_string(region.x0) + "," + std::to_string(region.x1) + "," +
                                std::to_string(region.y0) + "," + std::to_string(region.y1));
-    metadata.set("Full-Size", std::to_string(width) + "x" + std::to_string(height));
+    metadata.set(kFullSizeKey, std::to_string(width) + "x" + std::to_string(height));
 }
 
 ImageMetadata image_metadata(const CommandLine& cl) {

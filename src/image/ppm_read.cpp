@@ -2,6 +2,7 @@
 // one PPM reader, for the image tools and for textures (src/scene/texture.cpp).
 #include <charconv>
 
+#include "common/ascii.h"
 #include "rt/error.h"
 #include "rt/image_file.h"
 #include "rt/limits.h"
@@ -9,10 +10,6 @@
 namespace rt {
 
 namespace {
-
-bool is_space(char c) {
-    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
-}
 
 // Walks the header and plain-text samples: numbers between whitespace and comments.
 class Cursor {
@@ -33,7 +30,7 @@ class Cursor {
     }
     // After maxval: exactly one whitespace character, then the binary samples.
     std::string_view binary_rest() {
-        if (at_ >= s_.size() || !is_space(s_[at_]))
+        if (at_ >= s_.size() || !is_ascii_space(s_[at_]))
             throw Error("expected one whitespace character after the PPM maximum value");
         return s_.substr(at_ + 1);
     }
@@ -43,7 +40,7 @@ class Cursor {
   private:
     void skip_space_and_comments() {
         while (at_ < s_.size()) {
-            if (is_space(s_[at_])) {
+            if (is_ascii_space(s_[at_])) {
                 ++at_;
             } else if (s_[at_] == '#') {
                 std::size_t end = s_.find('\n', at_);
@@ -75,7 +72,8 @@ class Cursor {
 
 ImageFile decode_ppm(std::string_view file, PpmSamples samples) {
     if (file.size() < 3 || file[0] != 'P' ||
-        std::string_view("2356").find(file[1]) == std::string_view::npos || !is_space(file[2]))
+        std::string_view("2356").find(file[1]) == std::string_view::npos ||
+        !is_ascii_space(file[2]))
         throw Error("not a PPM or PGM file (expected P6, P5, P3 or P2)");
     ImageFile image;
     image.format = ImageFormat::ppm;

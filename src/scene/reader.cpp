@@ -145,18 +145,10 @@ Vec3 SceneReader::vec3(std::string_view what) {
 
 std::string SceneReader::last_number_text() const { return show_token(last_number_text_); }
 
-namespace {
-// The largest absolute component: dividing by it before squaring keeps a squared length
-// from underflowing (or overflowing) for any finite, non-zero vector.
-double largest_component(const Vec3& v) {
-    return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
-}
-}  // namespace
-
 Vec3 SceneReader::nonzero_vec3(std::string_view what) {
     const Location where = next_location();
     const Vec3 v = vec3(what);
-    if (!(largest_component(v) > 0))
+    if (!(max_abs_component(v) > 0))
         fail(where, std::string(what) + " must have a non-zero, finite length");
     // Its length is used as it is, squared, so the square must be a normal number.
     const double squared = length_squared(v);
@@ -170,7 +162,9 @@ Vec3 SceneReader::nonzero_vec3(std::string_view what) {
 Vec3 SceneReader::direction(std::string_view what, double* length_out) {
     const Location where = next_location();
     const Vec3 v = vec3(what);
-    const double largest = largest_component(v);
+    // Dividing by the largest absolute component before squaring keeps a squared length from
+    // underflowing (or overflowing) for any finite, non-zero vector.
+    const double largest = max_abs_component(v);
     if (!(largest > 0)) fail(where, std::string(what) + " must have a non-zero length");
     // Scaled only when the squared length leaves the normal doubles, so that every other
     // direction comes out exactly as v / |v| always did.
