@@ -16,7 +16,7 @@
 #include "check.h"
 #include "cli_util.h"
 #include "rt/image_compare.h"
-#include "scene/texture.h"
+#include "rt/image_io.h"
 #include "rt/reader.h"
 #include "rt/render.h"
 
@@ -39,7 +39,7 @@ std::vector<fs::path> scene_files() { return rt_test::files_with_extension(kScen
 std::string render_to_ppm(const fs::path& scene_file) {
     const rt::Scene scene = rt::read_scene_file(scene_file.string());
     std::ostringstream out;
-    rt::write_ppm(out, rt::render(scene, {}));
+    out << rt::encode_image(rt::render(scene, {}), {});
     return out.str();
 }
 

@@ -184,9 +184,6 @@ TEST(ppm_8_bit_is_the_original_format) {
     const rt::Raster r = raster_of(2, 1, {0, 0.5, 1, -1, 2, NAN});
     const std::string plain = rt::encode_image(r, {});
     CHECK(plain == "P6\n2 1\n255\n\x00\x80\xff\x00\xff\x00"sv);  // round(127.5) = 128
-    std::ostringstream written;
-    rt::write_ppm(written, r);
-    CHECK(written.str() == plain);
     // Metadata goes in comment lines after the magic number; the pixels stay.
     rt::ImageEncoding e;
     e.metadata.set("Software", "rt test");
@@ -197,7 +194,7 @@ TEST(ppm_8_bit_is_the_original_format) {
     // rt reads its own output back as a texture, comments and all.
     const fs::path dir = work_dir("image_io_ppm");
     write_file(dir / "c.ppm", commented);
-    const rt::Image image = rt::read_ppm(dir / "c.ppm");
+    const rt::Image image = rt::read_texture(dir / "c.ppm");
     CHECK_EQ(image.width, 2);
     CHECK_EQ(image.values[1], 128 / 255.0f);
     CHECK_EQ(image.values[2], 1.0f);
@@ -212,7 +209,7 @@ TEST(ppm_16_bit_by_hand) {
           "P6\n2 1\n65535\n\x80\x00\xff\xff\x00\x00\x40\x00\xff\xff\x00\x00"sv);
     const fs::path dir = work_dir("image_io_ppm16");
     write_file(dir / "d.ppm", rt::encode_image(r, e));
-    CHECK_EQ(rt::read_ppm(dir / "d.ppm").values[0], static_cast<float>(32768 / 65535.0));
+    CHECK_EQ(rt::read_texture(dir / "d.ppm").values[0], static_cast<float>(32768 / 65535.0));
 }
 
 TEST(pfm_holds_the_raw_values_bottom_row_first) {

@@ -121,7 +121,7 @@ TEST(bits_16) {
         CHECK_NEAR(v16 / 65535.0 * 255, static_cast<unsigned char>(samples8[i]), 0.51);
     }
     // rt reads its own 16-bit output as a texture.
-    CHECK_EQ(rt::read_ppm(dir / "b.ppm").width, 12);
+    CHECK_EQ(rt::read_texture(dir / "b.ppm").width, 12);
 }
 
 TEST(gamma_option) {
@@ -175,8 +175,8 @@ TEST(metadata_records_what_made_the_image) {
     CHECK(ppm_samples(with) == ppm_samples(without));
     CHECK(with.substr(with.size() - kSamples) == without.substr(12));
     // rt reads its own commented output back as a texture, to the same values.
-    const rt::Image a = rt::read_ppm(dir / "with.ppm");
-    const rt::Image b = rt::read_ppm(dir / "without.ppm");
+    const rt::Image a = rt::read_texture(dir / "with.ppm");
+    const rt::Image b = rt::read_texture(dir / "without.ppm");
     CHECK(a.values == b.values);
     CHECK(rt::decode_png(read_file(dir / "n.png")).metadata.entries.size() == 3);
     CHECK(rt::decode_png(rendered(dir, "--no-metadata", "bare.png")).metadata.entries.empty());

@@ -14,7 +14,7 @@
 #include "check.h"
 #include "cli_util.h"
 #include "scene/lexer.h"
-#include "scene/texture.h"
+#include "rt/image_io.h"
 #include "rt/reader.h"
 #include "rt/render.h"
 #include "rtpp/compiler.h"
@@ -58,7 +58,7 @@ std::string render(const std::string& text, const std::string& name) {
     std::istringstream in(text);
     const rt::Scene scene = rt::read_scene(in, name, kScenes);
     std::ostringstream out;
-    rt::write_ppm(out, rt::render(scene, {}));
+    out << rt::encode_image(rt::render(scene, {}), {});
     return out.str();
 }
 

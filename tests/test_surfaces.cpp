@@ -1,5 +1,8 @@
-// Checker (107), image-mapped (108) and affine (111) surfaces, the PPM texture reader behind
-// 108, and the affine light (112), at points whose answers are known by hand.
+// Checker (107), image-mapped (108) and affine (111) surfaces, the texture reader behind 108,
+// and the affine light (112), at points whose answers are known by hand.
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -7,8 +10,11 @@
 #include <limits>
 #include <string>
 
-#include "scene/texture.h"
+#include "rt/image_file.h"
+#include "rt/image_io.h"
 #include "rt/render.h"
+#include "rt/trace.h"
+#include "scene/texture.h"
 #include "scene_util.h"
 
 using namespace rt;
@@ -201,10 +207,10 @@ TEST(checker_errors) {
     CHECK_CONTAINS(surface_error("107 1 106 " + kBlue), "test.in:1:7: 106 (use default surface)");
 }
 
-// ---- The PPM reader behind 108 ----
+// ---- The texture reader behind 108 ----
 
 TEST(ppm_reads_p3_with_comments) {
-    const Image image = read_ppm(write_work_file("p3.ppm", kTexture4x2));
+    const Image image = read_texture(write_work_file("p3.ppm", kTexture4x2));
     CHECK_EQ(image.width, 4);
     CHECK_EQ(image.height, 2);
     for (int y = 0; y < 2; ++y)
@@ -214,22 +220,110 @@ TEST(ppm_reads_p3_with_comments) {
 TEST(ppm_reads_p6_8_and_16_bit) {
     std::string p6 = "P6\n# binary\n2 1\n255\n";
     p6 += std::string{'\xff', '\x00', '\x80', '\x00', '\x33', '\x01'};
-    const Image a = read_ppm(write_work_file("p6.ppm", p6));
+    const Image a = read_texture(write_work_file("p6.ppm", p6));
     CHECK_NEAR(a.at(0, 0), Spectrum(1.0, 0.0, 128 / 255.0), 1e-7);
     CHECK_NEAR(a.at(1, 0), Spectrum(0.0, 51 / 255.0, 1 / 255.0), 1e-7);
     // 16-bit samples are big-endian.
     std::string p16 = "P6 1 1 65535\n";
     p16 += std::string{'\x80', '\x00', '\x00', '\x01', '\xff', '\xff'};
-    const Image b = read_ppm(write_work_file("p16.ppm", p16));
+    const Image b = read_texture(write_work_file("p16.ppm", p16));
     CHECK_NEAR(b.at(0, 0), Spectrum(32768 / 65535.0, 1 / 65535.0, 1.0), 1e-7);
     // 16-bit text samples too.
-    const Image c = read_ppm(write_work_file("p3_16.ppm", "P3 1 1 1000 1000 500 0"));
+    const Image c = read_texture(write_work_file("p3_16.ppm", "P3 1 1 1000 1000 500 0"));
     CHECK_NEAR(c.at(0, 0), Spectrum(1.0, 0.5, 0.0), 1e-7);
     // A binary sample that looks like whitespace right after the header is data, not space.
     std::string spaces = "P6 1 1 255\n";
     spaces += std::string{' ', '\n', '#'};
-    const Image d = read_ppm(write_work_file("spaces.ppm", spaces));
+    const Image d = read_texture(write_work_file("spaces.ppm", spaces));
     CHECK_NEAR(d.at(0, 0), Spectrum(32 / 255.0, 10 / 255.0, 35 / 255.0), 1e-7);
+}
+
+TEST(texture_reads_grey_ppm_and_keeps_values_above_one_in_pfm) {
+    // P5 (grey) stands for all three colours.
+    const Image grey = read_texture(write_work_file("grey.pgm", "P5 2 1 255\n\x33\xff"));
+    CHECK_NEAR(grey.at(0, 0), Spectrum(51 / 255.0), 1e-7);
+    CHECK_NEAR(grey.at(1, 0), Spectrum(1.0), 0);
+    // PFM values are used as they are, above 1 too; rows are stored bottom first.
+    Raster r(1, 2);
+    r.set(0, 0, {2.5, 0.25, 0});
+    r.set(0, 1, {0, 1, 1e6});
+    const Image pfm = read_texture(write_work_file("bright.pfm", encode_pfm(r)));
+    CHECK_NEAR(pfm.at(0, 0), Spectrum(2.5, 0.25, 0.0), 0);
+    CHECK_NEAR(pfm.at(0, 1), Spectrum(0.0, 1.0, 1e6), 0);
+}
+
+// Renders a 12 x 9 view of a parallelogram wearing the texture at `path`, lit only by ambient
+// light, so that every pixel shows the texture's colour.
+Raster render_textured(const std::string& path) {
+    return render(parse_scene("102 0 0 5  0 0 0  1 0 0  0 1 0  12 9\n"
+                              "103 1 1 1\n"
+                              "6 -1.5 -1 0  3 0 0  0 2 0\n"
+                              "108 -1.5 -1 0  3 0 0  0 2 0  \"" +
+                              path + "\"  100 1 1 1  0 1 1 0 1\n"),
+                  {});
+}
+
+bool same_pixels(const Raster& a, const Raster& b) {
+    if (a.width() != b.width() || a.height() != b.height()) return false;
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x)
+            for (std::size_t c = 0; c < 3; ++c)
+                if (!(a.at(x, y)[c] == b.at(x, y)[c])) return false;
+    return true;
+}
+
+TEST(png_and_pfm_textures_render_as_the_ppm_they_were_made_from) {
+    // A 5 x 3 texture, every sample different; 8 and 16 bits, RGB and grey.
+    for (const int bits : {8, 16})
+        for (const int channels : {3, 1}) {
+            SampleImage samples{5, 3, channels, bits, {}};
+            samples.bytes.resize(samples.row_bytes() * 3);
+            for (std::size_t i = 0; i < samples.bytes.size(); ++i)
+                samples.bytes[i] = static_cast<std::uint8_t>(37 + 53 * i);
+            const std::string name = join("t", bits, "_", channels);
+            const Raster ppm =
+                render_textured(write_work_file(name + ".ppm", encode_ppm(samples, {})));
+            const Raster png =
+                render_textured(write_work_file(name + ".png", encode_png(samples, {})));
+            CHECK(same_pixels(ppm, png));
+            // The content decides the format, not the name.
+            const Raster misnamed =
+                render_textured(write_work_file(name + "-png.ppm", encode_png(samples, {})));
+            CHECK(same_pixels(ppm, misnamed));
+            // A PFM holding exactly the PPM's values (each sample divided by the maximum, as a
+            // float) renders the same pixels too.
+            Raster values(5, 3);
+            const double max = samples.max_value();
+            for (int y = 0; y < 3; ++y)
+                for (int x = 0; x < 5; ++x) {
+                    Spectrum s;
+                    for (int c = 0; c < 3; ++c)
+                        s[static_cast<std::size_t>(c)] = static_cast<float>(
+                            samples.sample(x, y, channels == 1 ? 0 : c) * (1.0 / max));
+                    values.set(x, y, s);
+                }
+            const Raster pfm = render_textured(write_work_file(name + ".pfm", encode_pfm(values)));
+            CHECK(same_pixels(ppm, pfm));
+            // And the texture shows: the middle row crosses several of its pixels.
+            std::vector<double> reds;
+            for (int x = 0; x < 12; ++x) reds.push_back(ppm.at(x, 4)[0]);
+            std::sort(reds.begin(), reds.end());
+            CHECK(std::unique(reds.begin(), reds.end()) - reds.begin() >= 4);
+        }
+}
+
+TEST(a_texture_that_is_a_fifo_or_a_directory_is_refused_whatever_its_name) {
+    const std::filesystem::path fifo = kWorkDir / "fifo.png";
+    std::filesystem::remove(fifo);
+    CHECK_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    ::alarm(60);  // a texture open that blocks would otherwise hang the test for ever
+    CHECK_CONTAINS(surface_error(image_surface(fifo.string())),
+                   texture_error_prefix(fifo.string()) + "it is not a regular file (a FIFO)");
+    ::alarm(0);
+    const std::filesystem::path dir = kWorkDir / "dir.pfm";
+    std::filesystem::create_directories(dir);
+    CHECK_CONTAINS(surface_error(image_surface(dir.string())),
+                   texture_error_prefix(dir.string()) + "it is a directory");
 }
 
 // ---- Image-mapped surface (108) ----
@@ -303,9 +397,9 @@ TEST(texture_errors_name_the_path_token) {
         const char* reason;
     };
     const Case cases[] = {
-        {"empty.ppm", "", "not a PPM file (expected P6 or P3)"},
-        {"magic.ppm", "P5 1 1 255\n\x01", "not a PPM file (expected P6 or P3)"},
-        {"magic2.ppm", "P612 1 255\n", "not a PPM file (expected P6 or P3)"},
+        {"empty.ppm", "", "not an image rt reads (PPM, PGM, PNG or PFM)"},
+        {"magic.ppm", "P7 1 1 255\n\x01", "not a PPM or PGM file (expected P6, P5, P3 or P2)"},
+        {"magic2.ppm", "P612 1 255\n", "not a PPM or PGM file (expected P6, P5, P3 or P2)"},
         {"width.ppm", "P3 x 1 255", "expected width in the PPM file"},
         {"height.ppm", "P3 1", "expected height in the PPM file"},
         {"nopixels.ppm", "P3 0 1 255", "PPM image has no pixels"},
@@ -321,6 +415,15 @@ TEST(texture_errors_name_the_path_token) {
         // Claims 8000 x 8000 pixels but holds none: refused by size before any allocation.
         {"claims.ppm", "P6 8000 8000 255\n\x01", "PPM pixel data ends early"},
         {"nospace.ppm", "P6 1 1 255#\x01\x02\x03", "expected one whitespace character after"},
+        // PNG and PFM are read by the image library's decoders, with their reasons.
+        {"broken.png", "\x89PNG\r\n\x1a\n", "PNG file ends before its IEND chunk"},
+        {"short.pfm", "PF 2 2 -1.0\n\x01\x02", "PFM pixel data ends early"},
+        {"negative.pfm", "Pf 1 1 -1.0\n" + std::string{'\x00', '\x00', '\x80', '\xbf'},
+         "PFM value -1 at column 0, row 0 from the top is no colour (each must be finite and "
+         ">= 0)"},
+        {"infinite.pfm",
+         "Pf 2 1 -1.0\n" + std::string(4, '\0') + std::string{'\x00', '\x00', '\x80', '\x7f'},
+         "PFM value inf at column 1, row 0 from the top is no colour"},
     };
     for (const Case& c : cases) {
         const std::string path = (kWorkDir / c.name).string();

@@ -1,5 +1,5 @@
-// Image files read back whatever their format (PPM P2/P3/P5/P6, PNG, PFM), for tools that
-// compare, merge and convert images: rtimg and the golden-image test.
+// Image files read back whatever their format (PPM P2/P3/P5/P6, PNG, PFM): for the tools that
+// compare, merge and convert images (rtimg and the golden-image test) and for textures.
 #pragma once
 
 #include <filesystem>
@@ -17,7 +17,11 @@ struct ImageFile {
     SampleImage samples;        // PPM and PNG: the samples as stored (PFM: size only, no bytes)
     std::vector<float> floats;  // PFM: red, green, blue per pixel, rows from the top
     ImageMetadata metadata;
+    unsigned maxval = 0;  // a PPM decoded with PpmSamples::as_stored: the file's maximum value
 
+    // The value of a full-intensity sample: samples.max_value() (255 or 65535), or the
+    // file's own maximum value for a PPM whose samples were kept as stored.
+    unsigned full_sample() const { return maxval != 0 ? maxval : samples.max_value(); }
     int width() const { return samples.width; }
     int height() const { return samples.height; }
     // 1 grey, 2 grey and alpha, 3 RGB, 4 RGBA; PFM is 3.
@@ -31,14 +35,19 @@ struct ImageFile {
     double level(int x, int y, int c) const;
 };
 
+// How a PPM's samples are kept when its maximum value is neither 255 nor 65535: rescaled to 8
+// or 16 bits, as the tools compare, merge and convert them, or as the file has them (in 8 bits
+// up to 255, else 16), so that a texture divides each by the file's own maximum exactly.
+enum class PpmSamples { rescaled, as_stored };
+
 // Reads a file, telling the format from its first bytes; throws rt::Error with the reason.
 ImageFile read_image_file(const std::filesystem::path& path);
-ImageFile decode_image(std::string_view file);
+ImageFile decode_image(std::string_view file, PpmSamples ppm = PpmSamples::rescaled);
 
-// PPM and PGM, binary (P6, P5) or plain text (P3, P2), any maxval up to 65535 (a maxval other
-// than 255 or 65535 is rescaled to 8 or 16 bits). Comment lines "# Key: value" in the header
-// become the metadata, as encode_ppm writes them.
-ImageFile decode_ppm(std::string_view file);
+// PPM and PGM, binary (P6, P5) or plain text (P3, P2), any maxval up to 65535. Comment lines
+// "# Key: value" in the header become the metadata, as encode_ppm writes them. A header that
+// claims more samples than the file holds is refused before they are allocated.
+ImageFile decode_ppm(std::string_view file, PpmSamples samples = PpmSamples::rescaled);
 // PFM colour ("PF") or grey ("Pf", which becomes RGB), either byte order.
 ImageFile decode_pfm(std::string_view file);
 

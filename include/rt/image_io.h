@@ -52,6 +52,11 @@ struct ImageMetadata {
     const std::string* find(std::string_view key) const;
 };
 
+// The keys a piece rendered with --region records (rt writes them, rtimg merge reads them):
+// "x0,x1,y0,y1", the piece's place, and "WxH", the full image's size.
+inline constexpr std::string_view kRegionKey = "Region";
+inline constexpr std::string_view kFullSizeKey = "Full-Size";
+
 // Integer samples as PPM and PNG store them: rows from the top, a pixel's channels together,
 // each sample big-endian in bits / 8 bytes.
 struct SampleImage {

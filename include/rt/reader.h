@@ -4,15 +4,14 @@
 
 #include <filesystem>
 #include <istream>
-#include <map>
 #include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "scene/lexer.h"
 #include "rt/light.h"
-#include "scene/texture.h"
+#include "rt/limits.h"  // the bounds the reader holds a scene to
+#include "rt/location.h"
 #include "rt/primitive.h"
 #include "rt/scene.h"
 #include "rt/surface.h"
@@ -20,19 +19,8 @@
 namespace rt {
 
 struct Image;
-
-// Affine primitives, surfaces and lights and checker surfaces hold other objects; input that
-// nests them deeper than this is refused, so no input can overflow the stack.
-inline constexpr int kMaxNesting = 32;
-
-// The largest image rt will allocate, in pixels per side and in total; a viewer asking for
-// more is an error before anything is allocated.
-inline constexpr long kMaxResolution = 16384;
-inline constexpr long kMaxPixels = 64L * 1024 * 1024;
-
-// The most light samples a scene may take in all (a point light takes one, a sphere light n):
-// each is a shadow ray for every point lit, so this bounds the cost of lighting one point.
-inline constexpr long kMaxLightSamples = 1L << 20;
+class Lexer;
+class TextureCache;
 
 // Reads one scene. The read functions of the object tables call back into it for their
 // numbers, so every error they report carries a place in the file.
@@ -43,6 +31,9 @@ class SceneReader {
     // them on up to `threads` threads; what they build is the same for any number.
     SceneReader(std::istream& in, std::string name, std::filesystem::path base_dir,
                 int threads = 1);
+    ~SceneReader();
+    SceneReader(const SceneReader&) = delete;
+    SceneReader& operator=(const SceneReader&) = delete;
 
     // The scene as read, without its hierarchy (Scene::build_index builds it).
     Scene read_scene();
@@ -62,15 +53,15 @@ class SceneReader {
     std::string last_number_text() const;
     long whole(std::string_view what, long min, long max);
     std::string path(std::string_view what);
-    // Reads a texture path and loads the PPM it names (relative to the scene's directory).
+    // Reads a texture path and loads the image it names (relative to the scene's directory).
     // Each file (by device and inode) is loaded once per scene however many surfaces name it,
     // by whatever path.
     std::shared_ptr<const Image> texture(std::string_view what);
     // Every path that named a texture so far, resolved against the scene's directory, each
     // once, in the order first named: what an image made from the scene depends on (-M).
-    const std::vector<std::filesystem::path>& texture_paths() const { return texture_paths_; }
+    const std::vector<std::filesystem::path>& texture_paths() const;
     // How many texture files were loaded: one per file, whatever it was called.
-    std::size_t textures_loaded() const { return textures_.size(); }
+    std::size_t textures_loaded() const;
 
     // Nested objects: an inner primitive (ID and numbers, no surface), a surface (ID and
     // numbers, or 106 for the current default), a positioned light (ID and numbers).
@@ -86,7 +77,7 @@ class SceneReader {
     void note_splitting_surface() { splits_rays_ = true; }
 
     // Where the next token starts: read it before a field to report errors about that field.
-    Location next_location() { return lexer_.peek().where; }
+    Location next_location();
     [[noreturn]] void fail(Location where, std::string_view message) const;
     std::filesystem::path resolve(const std::string& path) const;
 
@@ -121,12 +112,11 @@ class SceneReader {
     void read_top_level_object(Scene& scene, bool& have_viewer);
     Viewer read_viewer();
 
-    Lexer lexer_;
-    std::string name_;
+    // Behind pointers, so that this header needs neither: one indirection per token.
+    std::unique_ptr<Lexer> lexer_;
+    std::unique_ptr<TextureCache> textures_;
     std::filesystem::path base_dir_;
     SurfacePtr default_surface_;
-    std::map<FileId, std::shared_ptr<const Image>> textures_;  // by file, not by name
-    std::vector<std::filesystem::path> texture_paths_;
     int depth_ = 0;
     long numbers_read_ = 0;         // every number token so far, IDs included
     Location last_number_;          // where the last of them began
@@ -139,7 +129,9 @@ class SceneReader {
     int threads_ = 1;
 };
 
-// A number rt computed as messages show it (%g); numbers read are shown as written.
+// A number rt computed as messages show it (%g); numbers read are shown as written. Defined
+// with the other message helpers (src/common/message_text.cpp); declared here too for the
+// read functions, which report what they computed.
 std::string format_number(double value);
 
 struct StageTimes;

@@ -7,7 +7,7 @@
 #include <string_view>
 
 #include "common/message_text.h"  // values echoed in messages are escaped as tokens are
-#include "rt/reader.h"        // the resolution limits
+#include "rt/limits.h"            // the resolution limits
 
 namespace rt {
 
@@ -101,12 +101,6 @@ const char* mode_name(RenderMode mode) {
             return "normal";
     }
     return "?";
-}
-
-std::string number_text(double value) {
-    char buffer[32];
-    const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-    return std::string(buffer, result.ptr);
 }
 
 RenderMode parse_mode(const std::string& text) {
@@ -311,9 +305,9 @@ std::optional<std::string> region_problem(const PixelRect& region, int width, in
 }
 
 void add_region_metadata(ImageMetadata& metadata, const PixelRect& region, int width, int height) {
-    metadata.set("Region", std::to_string(region.x0) + "," + std::to_string(region.x1) + "," +
+    metadata.set(kRegionKey, std::to_string(region.x0) + "," + std::to_string(region.x1) + "," +
                                std::to_string(region.y0) + "," + std::to_string(region.y1));
-    metadata.set("Full-Size", std::to_string(width) + "x" + std::to_string(height));
+    metadata.set(kFullSizeKey, std::to_string(width) + "x" + std::to_string(height));
 }
 
 ImageMetadata image_metadata(const CommandLine& cl) {
@@ -322,9 +316,10 @@ ImageMetadata image_metadata(const CommandLine& cl) {
     metadata.set("Software", "rt " RT_VERSION);
     metadata.set("Scene", cl.input == "-" ? "<stdin>" : cl.input);
     const RenderOptions& r = cl.render;
-    std::string options = "-d " + std::to_string(r.max_depth) + " -w " + number_text(r.min_weight) +
-                          " -m " + mode_name(r.mode) + " -s " + std::to_string(r.samples);
-    if (r.adaptive_threshold) options += " -a " + number_text(*r.adaptive_threshold);
+    std::string options = "-d " + std::to_string(r.max_depth) + " -w " +
+                          exact_number(r.min_weight) + " -m " + mode_name(r.mode) + " -s " +
+                          std::to_string(r.samples);
+    if (r.adaptive_threshold) options += " -a " + exact_number(*r.adaptive_threshold);
     if (cl.size)
         options +=
             " --size " + std::to_string(cl.size->width) + "x" + std::to_string(cl.size->height);

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "rt/image_io.h"
 #include "common/option_reader.h"
+#include "rt/image_io.h"
 #include "rt/options.h"
 
 namespace rt {
@@ -50,7 +50,8 @@ ImageMetadata image_metadata(const CommandLine& cl);
 std::optional<std::string> region_problem(const PixelRect& region, int width, int height);
 
 // The metadata a region's file records besides image_metadata, always (rtimg merge needs it):
-// "Region" -> "x0,x1,y0,y1" and "Full-Size" -> "WxH", the full image's size.
+// kRegionKey ("Region") -> "x0,x1,y0,y1" and kFullSizeKey ("Full-Size") -> "WxH", the full
+// image's size.
 void add_region_metadata(ImageMetadata& metadata, const PixelRect& region, int width, int height);
 
 // The text of --help.

@@ -3,7 +3,9 @@
 // cursor, retitle the window or hide what rt says.
 #include "common/message_text.h"
 
+#include <charconv>
 #include <cstdint>
+#include <cstdio>
 
 namespace rt {
 
@@ -92,6 +94,18 @@ std::string printable_message(std::string_view message) {
         message.remove_prefix(line_end + 1);
     }
     return shown;
+}
+
+std::string format_number(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", value);
+    return text;
+}
+
+std::string exact_number(double value) {
+    char text[32];
+    const auto result = std::to_chars(text, text + sizeof text, value);
+    return std::string(text, result.ptr);
 }
 
 }  // namespace rt

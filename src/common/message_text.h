@@ -18,6 +18,13 @@ std::string quote_token(std::string_view text, std::size_t limit = 40);
 // The same without the quotes, for numbers shown as written.
 std::string show_token(std::string_view text, std::size_t limit = 40);
 
+// A number rt computed as messages show it (%g: six significant digits); numbers read are
+// shown as written.
+std::string format_number(double value);
+// The shortest text that reads back as exactly `value`, for records that must say what was
+// used (the Options an image's metadata gives), where six digits would not do.
+std::string exact_number(double value);
+
 // A whole message made safe for a terminal, as the programs print every message: its lines
 // kept, anything else escaped. Text already escaped is unchanged.
 std::string printable_message(std::string_view message);

@@ -13,19 +13,19 @@ namespace rt {
 double ImageFile::value(int x, int y, int c) const {
     const std::size_t pixel = static_cast<std::size_t>(y) * width() + x;
     if (format == ImageFormat::pfm) return floats[pixel * 3 + c];
-    return static_cast<double>(samples.sample(x, y, c)) / samples.max_value();
+    return static_cast<double>(samples.sample(x, y, c)) / full_sample();
 }
 
 double ImageFile::level(int x, int y, int c) const {
     if (format == ImageFormat::pfm)
         return floats[(static_cast<std::size_t>(y) * width() + x) * 3 + c] * 255.0;
     const int channel = channels() <= 2 ? 0 : c;
-    // 8-bit samples are their own levels exactly; 16-bit ones are scaled.
+    // 8-bit samples are their own levels exactly (s * 255 / 255 rounds to s); others are scaled.
     const double s = samples.sample(x, y, channel);
-    return samples.bits == 8 ? s : s * 255.0 / 65535.0;
+    return s * 255.0 / full_sample();
 }
 
-ImageFile decode_image(std::string_view file) {
+ImageFile decode_image(std::string_view file, PpmSamples ppm) {
     if (file.size() >= 8 && file.substr(0, 8) == "\x89PNG\r\n\x1a\n") {
         DecodedImage png = decode_png(file);
         ImageFile image;
@@ -37,7 +37,7 @@ ImageFile decode_image(std::string_view file) {
     }
     if (file.size() >= 2 && (file.substr(0, 2) == "PF" || file.substr(0, 2) == "Pf"))
         return decode_pfm(file);
-    if (file.size() >= 2 && file[0] == 'P') return decode_ppm(file);
+    if (file.size() >= 2 && file[0] == 'P') return decode_ppm(file, ppm);
     throw Error("not an image rt reads (PPM, PGM, PNG or PFM)");
 }
 

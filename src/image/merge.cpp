@@ -36,7 +36,7 @@ std::string describe(const PixelRect& r) {
 ImageMetadata without_region(const ImageMetadata& metadata) {
     ImageMetadata out;
     for (const auto& [key, value] : metadata.entries)
-        if (key != "Region" && key != "Full-Size") out.entries.emplace_back(key, value);
+        if (key != kRegionKey && key != kFullSizeKey) out.entries.emplace_back(key, value);
     return out;
 }
 
@@ -127,8 +127,8 @@ void check_no_gap(const std::vector<RecordedRegion>& regions) {
 }  // namespace
 
 std::optional<RecordedRegion> recorded_region(const ImageFile& image) {
-    const std::string* region = image.metadata.find("Region");
-    const std::string* size = image.metadata.find("Full-Size");
+    const std::string* region = image.metadata.find(kRegionKey);
+    const std::string* size = image.metadata.find(kFullSizeKey);
     if (region == nullptr && size == nullptr) return std::nullopt;
     if (region == nullptr || size == nullptr)
         throw Error("records only one of Region and Full-Size");

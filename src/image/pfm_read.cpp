@@ -3,9 +3,10 @@
 #include <charconv>
 #include <cstring>
 
+#include "common/ascii.h"
 #include "rt/error.h"
 #include "rt/image_file.h"
-#include "scene/texture.h"
+#include "rt/limits.h"
 
 namespace rt {
 
@@ -14,9 +15,9 @@ namespace {
 // One whitespace-separated header field from `at`, which moves past the field and the single
 // whitespace character after it.
 std::string_view field(std::string_view s, std::size_t& at) {
-    while (at < s.size() && (s[at] == ' ' || s[at] == '\t' || s[at] == '\n' || s[at] == '\r')) ++at;
+    while (at < s.size() && is_ascii_space(s[at])) ++at;
     const std::size_t start = at;
-    while (at < s.size() && s[at] != ' ' && s[at] != '\t' && s[at] != '\n' && s[at] != '\r') ++at;
+    while (at < s.size() && !is_ascii_space(s[at])) ++at;
     if (start == at || at == s.size()) throw Error("PFM header ends early");
     const std::string_view text = s.substr(start, at - start);
     ++at;

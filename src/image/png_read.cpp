@@ -2,11 +2,11 @@
 #include <array>
 #include <vector>
 
-#include "png_format.h"
 #include "image/deflate.h"
+#include "png_format.h"
 #include "rt/error.h"
 #include "rt/image_io.h"
-#include "scene/texture.h"
+#include "rt/limits.h"
 
 namespace rt {
 

@@ -1,44 +1,46 @@
-// PPM and PGM input for the image tools, binary and plain, keeping rt's "# Key: value"
-// comments as metadata. (Textures have their own reader, src/ppm.cpp, which needs neither.)
+// PPM and PGM input, binary and plain, keeping rt's "# Key: value" comments as metadata: the
+// one PPM reader, for the image tools and for textures (src/scene/texture.cpp).
 #include <charconv>
 
+#include "common/ascii.h"
 #include "rt/error.h"
 #include "rt/image_file.h"
-#include "scene/texture.h"
+#include "rt/limits.h"
 
 namespace rt {
 
 namespace {
-
-bool is_space(char c) {
-    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
-}
 
 // Walks the header and plain-text samples: numbers between whitespace and comments.
 class Cursor {
   public:
     Cursor(std::string_view file, ImageMetadata* metadata) : s_(file), metadata_(metadata) {}
 
+    // A decimal number of at most 10^9 (so that width times height cannot overflow).
     unsigned long number(const char* what) {
         skip_space_and_comments();
+        const char* start = s_.data() + at_;
         unsigned long value = 0;
-        const auto [ptr, ec] = std::from_chars(s_.data() + at_, s_.data() + s_.size(), value);
+        const auto [ptr, ec] = std::from_chars(start, s_.data() + s_.size(), value);
+        if (ptr == start) throw Error(std::string("expected ") + what + " in the PPM file");
         if (ec != std::errc() || value > 1'000'000'000)
-            throw Error(std::string("PPM file has no valid ") + what);
+            throw Error(std::string(what) + " too large in the PPM file");
         at_ = static_cast<std::size_t>(ptr - s_.data());
         return value;
     }
     // After maxval: exactly one whitespace character, then the binary samples.
     std::string_view binary_rest() {
-        if (at_ >= s_.size() || !is_space(s_[at_]))
-            throw Error("PPM file has no whitespace after its maximum value");
+        if (at_ >= s_.size() || !is_ascii_space(s_[at_]))
+            throw Error("expected one whitespace character after the PPM maximum value");
         return s_.substr(at_ + 1);
     }
+    // The bytes not read yet.
+    std::size_t remaining() const { return s_.size() - at_; }
 
   private:
     void skip_space_and_comments() {
         while (at_ < s_.size()) {
-            if (is_space(s_[at_])) {
+            if (is_ascii_space(s_[at_])) {
                 ++at_;
             } else if (s_[at_] == '#') {
                 std::size_t end = s_.find('\n', at_);
@@ -68,9 +70,10 @@ class Cursor {
 
 }  // namespace
 
-ImageFile decode_ppm(std::string_view file) {
+ImageFile decode_ppm(std::string_view file, PpmSamples samples) {
     if (file.size() < 3 || file[0] != 'P' ||
-        std::string_view("2356").find(file[1]) == std::string_view::npos || !is_space(file[2]))
+        std::string_view("2356").find(file[1]) == std::string_view::npos ||
+        !is_ascii_space(file[2]))
         throw Error("not a PPM or PGM file (expected P6, P5, P3 or P2)");
     ImageFile image;
     image.format = ImageFormat::ppm;
@@ -90,13 +93,15 @@ ImageFile decode_ppm(std::string_view file) {
     out.height = static_cast<int>(height);
     out.channels = file[1] == '3' || file[1] == '6' ? 3 : 1;
     out.bits = maxval > 255 ? 16 : 8;
+    const bool rescale = samples == PpmSamples::rescaled;
+    if (!rescale) image.maxval = static_cast<unsigned>(maxval);
     const std::size_t count = width * height * static_cast<std::size_t>(out.channels);
     const std::size_t stored_bytes = maxval > 255 ? 2 : 1;
     std::string_view binary;
     if (!plain) {
         binary = cursor.binary_rest();
         if (binary.size() < count * stored_bytes) throw Error("PPM pixel data ends early");
-    } else if (file.size() < count) {
+    } else if (cursor.remaining() < count) {
         throw Error("PPM pixel data ends early");  // each plain sample takes a byte at least
     }
     out.bytes.resize(count * (out.bits / 8));
@@ -104,14 +109,14 @@ ImageFile decode_ppm(std::string_view file) {
     for (std::size_t i = 0; i < count; ++i) {
         unsigned long v = 0;
         if (plain)
-            v = cursor.number("sample");
+            v = cursor.number("pixel value");
         else
             v = stored_bytes == 2
                     ? static_cast<unsigned long>(static_cast<unsigned char>(binary[2 * i])) << 8 |
                           static_cast<unsigned char>(binary[2 * i + 1])
                     : static_cast<unsigned char>(binary[i]);
-        if (v > maxval) throw Error("PPM sample above the maximum value");
-        if (maxval != max) v = (v * max + maxval / 2) / maxval;  // rescaled, rounded
+        if (v > maxval) throw Error("PPM pixel value above the maximum value");
+        if (rescale && maxval != max) v = (v * max + maxval / 2) / maxval;  // rounded
         if (out.bits == 16) {
             out.bytes[2 * i] = static_cast<std::uint8_t>(v >> 8);
             out.bytes[2 * i + 1] = static_cast<std::uint8_t>(v);

@@ -47,7 +47,7 @@ int info(const std::vector<std::string>& args) {
     const std::string* software = f.metadata.find("Software");
     std::cout << "made by: " << (software ? shown(*software) : "unknown") << "\n";
     for (const auto& [key, value] : f.metadata.entries)
-        if (key != "Software" && key != "Region" && key != "Full-Size")
+        if (key != "Software" && key != rt::kRegionKey && key != rt::kFullSizeKey)
             std::cout << shown(key) << ": " << shown(value) << "\n";
     // Samples as stored (0 to 255 or 65535), or PFM's floats.
     std::cout << "channel  min  max  mean\n";

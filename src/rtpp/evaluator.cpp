@@ -246,9 +246,10 @@ void Evaluator::set_field(const Stmt& stmt, Target target) {
             double wh[2];
             for (int i = 0; i < 2; ++i) {
                 wh[i] = number_of(stmt.args[static_cast<std::size_t>(i)], what);
-                if (wh[i] != std::floor(wh[i]) || wh[i] < 1 || wh[i] > 16384)
+                if (wh[i] != std::floor(wh[i]) || wh[i] < 1 || wh[i] > rt::kMaxResolution)
                     fail(stmt.args[static_cast<std::size_t>(i)].pos,
-                         what + " must be whole numbers from 1 to 16384, got " + show(wh[i]));
+                         what + " must be whole numbers from 1 to " +
+                             std::to_string(rt::kMaxResolution) + ", got " + show(wh[i]));
             }
             value = Value::of(rt::Vec3{wh[0], wh[1], 0});
             break;

@@ -5,6 +5,8 @@
 
 #include <cstddef>
 
+#include "rt/limits.h"
+
 namespace rtpp {
 
 struct Limits {
@@ -19,8 +21,8 @@ struct Limits {
     // Nesting of blocks, parentheses and objects in the source, and of objects in one another
     // as they are evaluated: keeps the parser's and evaluator's recursion off the stack's end.
     int nesting = 200;
-    // A string literal, and a name.
-    std::size_t string_length = 4096;
+    // A string literal, and a name: no longer than a token rt reads.
+    std::size_t string_length = rt::kMaxTokenLength;
     // One source file.
     std::size_t file_size = 256u << 20;
 };

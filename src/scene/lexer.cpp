@@ -8,16 +8,15 @@
 #include <cstring>
 #include <limits>
 
+#include "common/ascii.h"
 #include "rt/error.h"
 
 namespace rt {
 
 namespace {
-bool is_space(char c) {
-    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
-}
-bool ends_plain_token(char c) { return is_space(c) || c == '#'; }
-bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+bool ends_plain_token(char c) { return is_ascii_space(c) || c == '#'; }
+// Whitespace that does not end the line.
+bool is_blank(char c) { return is_ascii_space(c) && c != '\n'; }
 
 // A comment longer than this is not a line marker, so a marker costs bounded memory.
 constexpr std::size_t kMaxMarkerLength = kMaxTokenLength + 32;
@@ -132,7 +131,7 @@ void Lexer::skip_space_and_comments() {
         const char c = chunk_[pos_];
         if (c == '\n') {
             end_line();
-        } else if (is_space(c)) {
+        } else if (is_ascii_space(c)) {
             ++pos_;
             ++here_.column;
         } else if (c == '#') {

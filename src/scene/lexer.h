@@ -11,16 +11,10 @@
 #include <vector>
 
 #include "common/message_text.h"  // how messages show a token
+#include "rt/limits.h"
+#include "rt/location.h"
 
 namespace rt {
-
-// 64-bit counters: a line of more than 2^31 bytes must not wrap into negative columns.
-struct Location {
-    std::int64_t line = 1;
-    std::int64_t column = 1;
-    int file = 0;  // which of the lexer's file names: 0 is the input's own, others come from
-                   // `#line N "path"` markers
-};
 
 struct Token {
     std::string text;
@@ -31,10 +25,6 @@ struct Token {
 
     bool at_end() const { return end; }
 };
-
-// The longest token rt accepts; a longer one is an error, so no input makes the lexer
-// allocate without bound.
-inline constexpr std::size_t kMaxTokenLength = 4096;
 
 class Lexer {
   public:

@@ -1,77 +1,37 @@
+// The field readers: the numbers, vectors and paths the object tables' read functions ask
+// for, each checked and reported at its place in the file.
 #include "rt/reader.h"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-
-#include <algorithm>
-#include <cerrno>
 #include <charconv>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
-#include <cstring>
-#include <istream>
 #include <limits>
 
 #include "rt/error.h"
-#include "common/fd_stream.h"
+#include "scene/lexer.h"
 #include "scene/texture.h"
-#include "batch/statistics.h"
 
 namespace rt {
 
-namespace {
-
-// IDs the reader handles itself rather than through a table.
-constexpr long kViewerId = 102;
-constexpr long kAmbientLightId = 103;
-constexpr long kDefaultSurfaceId = 105;
-constexpr long kUseDefaultSurfaceId = 106;
-
-// What an ID is, for messages that say what was found instead of what was expected.
-std::string describe_id(long id) {
-    if (id == kViewerId) return "102 (viewer)";
-    if (id == kAmbientLightId) return "103 (ambient light)";
-    if (id == kDefaultSurfaceId) return "105 (default surface)";
-    if (id == kUseDefaultSurfaceId) return "106 (use default surface)";
-    const int small = static_cast<int>(id);
-    if (const PrimitiveType* p = find_primitive_type(small))
-        return std::to_string(id) + " (" + p->name + ")";
-    if (const SurfaceType* s = find_surface_type(small))
-        return std::to_string(id) + " (" + s->name + ")";
-    if (const LightType* l = find_light_type(small))
-        return std::to_string(id) + " (" + l->name + ")";
-    return std::to_string(id);
-}
-
-// "simple surface 100": what an object is, for the note about the previous object.
-std::string name_id(long id) {
-    const std::string described = describe_id(id);
-    const auto paren = described.find(" (");
-    if (paren == std::string::npos) return "object " + described;
-    return described.substr(paren + 2, described.size() - paren - 3) + " " +
-           described.substr(0, paren);
-}
-
-std::string line_and_column(Location where) {
-    return std::to_string(where.line) + ":" + std::to_string(where.column);
-}
-
-}  // namespace
-
-std::string format_number(double value) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", value);
-    return text;
-}
-
 SceneReader::SceneReader(std::istream& in, std::string name, std::filesystem::path base_dir,
                          int threads)
-    : lexer_(in, std::move(name)), base_dir_(std::move(base_dir)), threads_(threads) {}
+    : lexer_(std::make_unique<Lexer>(in, std::move(name))),
+      textures_(std::make_unique<TextureCache>()),
+      base_dir_(std::move(base_dir)),
+      threads_(threads) {}
+
+SceneReader::~SceneReader() = default;
+
+Location SceneReader::next_location() { return lexer_->peek().where; }
+
+const std::vector<std::filesystem::path>& SceneReader::texture_paths() const {
+    return textures_->paths();
+}
+
+std::size_t SceneReader::textures_loaded() const { return textures_->files(); }
 
 void SceneReader::fail(Location where, std::string_view message) const {
-    lexer_.fail(where, message);
+    lexer_->fail(where, message);
 }
 
 std::filesystem::path SceneReader::resolve(const std::string& path) const {
@@ -87,7 +47,7 @@ SceneReader::Nest::Nest(SceneReader& reader, Location where) : reader_(reader) {
 }
 
 double SceneReader::number(std::string_view what) {
-    const Token& token = lexer_.next();
+    const Token& token = lexer_->next();
     if (token.at_end()) fail(token.where, "unexpected end of file: expected " + std::string(what));
     ++numbers_read_;
     last_number_ = token.where;
@@ -138,18 +98,10 @@ Vec3 SceneReader::vec3(std::string_view what) {
 
 std::string SceneReader::last_number_text() const { return show_token(last_number_text_); }
 
-namespace {
-// The largest absolute component: dividing by it before squaring keeps a squared length
-// from underflowing (or overflowing) for any finite, non-zero vector.
-double largest_component(const Vec3& v) {
-    return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
-}
-}  // namespace
-
 Vec3 SceneReader::nonzero_vec3(std::string_view what) {
     const Location where = next_location();
     const Vec3 v = vec3(what);
-    if (!(largest_component(v) > 0))
+    if (!(max_abs_component(v) > 0))
         fail(where, std::string(what) + " must have a non-zero, finite length");
     // Its length is used as it is, squared, so the square must be a normal number.
     const double squared = length_squared(v);
@@ -163,7 +115,9 @@ Vec3 SceneReader::nonzero_vec3(std::string_view what) {
 Vec3 SceneReader::direction(std::string_view what, double* length_out) {
     const Location where = next_location();
     const Vec3 v = vec3(what);
-    const double largest = largest_component(v);
+    // Dividing by the largest absolute component before squaring keeps a squared length from
+    // underflowing (or overflowing) for any finite, non-zero vector.
+    const double largest = max_abs_component(v);
     if (!(largest > 0)) fail(where, std::string(what) + " must have a non-zero length");
     // Scaled only when the squared length leaves the normal doubles, so that every other
     // direction comes out exactly as v / |v| always did.
@@ -200,7 +154,7 @@ long SceneReader::id(std::string_view what) {
 }
 
 std::string SceneReader::path(std::string_view what) {
-    const Token& token = lexer_.next();
+    const Token& token = lexer_->next();
     if (token.at_end()) fail(token.where, "unexpected end of file: expected " + std::string(what));
     if (token.text.empty()) fail(token.where, std::string(what) + " must not be empty");
     return token.text;
@@ -211,16 +165,7 @@ std::shared_ptr<const Image> SceneReader::texture(std::string_view what) {
     const std::string written = path(what);
     const std::filesystem::path resolved = resolve(written);
     try {
-        const FileId file = texture_file(resolved);
-        // Every spelling is a dependency: a symbolic link among them can later be pointed
-        // at another file.
-        if (std::find(texture_paths_.begin(), texture_paths_.end(), resolved) ==
-            texture_paths_.end())
-            texture_paths_.push_back(resolved);
-        if (const auto known = textures_.find(file); known != textures_.end()) return known->second;
-        auto image = std::make_shared<const Image>(read_ppm(resolved));
-        textures_.emplace(file, image);
-        return image;
+        return textures_->load(resolved);
     } catch (const Error& e) {
         // Paths are shown whole (escaped): a user needs all of one to find the file.
         std::string message =
@@ -229,213 +174,6 @@ std::shared_ptr<const Image> SceneReader::texture(std::string_view what) {
             message += " (looked for " + quote_token(resolved.string(), kShowWhole) + ")";
         fail(where, message);
     }
-}
-
-Shape SceneReader::shape(std::string_view what) {
-    const Location where = next_location();
-    const Nest nest(*this, where);
-    const long type_id = id(std::string(what) + " ID");
-    begin_object(type_id, where, false);
-    const PrimitiveType* type = find_primitive_type(static_cast<int>(type_id));
-    if (type == nullptr)
-        fail(where, "expected " + std::string(what) + " ID (a primitive, 1-99), got " +
-                        describe_id(type_id));
-    return {type, type->functions->read(*this)};
-}
-
-SurfacePtr SceneReader::surface() {
-    const Location where = next_location();
-    const Nest nest(*this, where);
-    const long type_id = id("surface ID");
-    begin_object(type_id, where, false);
-    if (type_id == kUseDefaultSurfaceId) {
-        if (!default_surface_)
-            fail(where, "106 (use default surface) but no default surface has been set with 105");
-        return default_surface_;
-    }
-    const SurfaceType* type = find_surface_type(static_cast<int>(type_id));
-    if (type == nullptr) {
-        std::string ids;
-        bool listed_default = false;
-        for (const SurfaceType& row : surface_types()) {
-            if (!listed_default && row.id > kUseDefaultSurfaceId) {
-                ids += ", " + std::to_string(kUseDefaultSurfaceId);
-                listed_default = true;
-            }
-            ids += (ids.empty() ? "" : ", ") + std::to_string(row.id);
-        }
-        fail(where, "expected a surface ID (one of " + ids + "), got " + describe_id(type_id));
-    }
-    return std::make_shared<const Surface>(Surface{type, type->read(*this)});
-}
-
-Light SceneReader::light(std::string_view what) {
-    const Location where = next_location();
-    const Nest nest(*this, where);
-    const long type_id = id(std::string(what) + " ID");
-    begin_object(type_id, where, false);
-    const LightType* type = find_light_type(static_cast<int>(type_id));
-    if (type == nullptr)
-        fail(where, "expected " + std::string(what) + " ID (a light with a position), got " +
-                        describe_id(type_id));
-    return {type, type->read(*this)};
-}
-
-Viewer SceneReader::read_viewer() {
-    Viewer v;
-    v.eye = vec3("viewer eye position");
-    const Location look_where = next_location();
-    v.look_at = vec3("viewer look-at point");
-    if (!(length(v.look_at - v.eye) > 0))
-        fail(look_where, "viewer look-at point must differ from the eye position");
-    v.x = nonzero_vec3("viewer x vector");
-    v.y = nonzero_vec3("viewer y vector");
-    const Location res_where = next_location();
-    v.xres = static_cast<int>(whole("viewer x resolution", 1, kMaxResolution));
-    v.yres = static_cast<int>(whole("viewer y resolution", 1, kMaxResolution));
-    if (static_cast<long>(v.xres) * v.yres > kMaxPixels)
-        fail(res_where, "viewer resolution " + std::to_string(v.xres) + "x" +
-                            std::to_string(v.yres) + " exceeds the limit of " +
-                            std::to_string(kMaxPixels) + " pixels");
-    return v;
-}
-
-void SceneReader::begin_object(long type_id, Location where, bool top_level) {
-    last_object_ = {type_id, where, numbers_read_, true};
-    if (top_level) top_level_object_ = last_object_;
-}
-
-std::string SceneReader::previous_object_note(Location error_at, long numbers_read,
-                                              Location last_number) const {
-    if (!last_object_.known) return {};
-    const auto place = [&](Location at) {
-        return at.file == error_at.file ? line_and_column(at) : lexer_.place(at);
-    };
-    const long count = numbers_read - last_object_.numbers_before;
-    std::string note = "note: the previous object, " + name_id(last_object_.id) + " at " +
-                       place(last_object_.where) + ", read " + std::to_string(count) +
-                       (count == 1 ? " number" : " numbers");
-    if (count > 0) note += " ending at " + place(last_number);
-    const ObjectStart& top = top_level_object_;
-    if (top.known && (top.where.line != last_object_.where.line ||
-                      top.where.column != last_object_.where.column ||
-                      top.where.file != last_object_.where.file))
-        note += ", within " + name_id(top.id) + " at " + place(top.where) + " (" +
-                std::to_string(numbers_read - top.numbers_before) + " numbers in all)";
-    return note;
-}
-
-void SceneReader::fail_at_object_id(Location where, std::string_view message, long numbers_read,
-                                    Location last_number) const {
-    const std::string note = previous_object_note(where, numbers_read, last_number);
-    if (note.empty()) fail(where, message);
-    throw Error(lexer_.place(where) + ": " + std::string(message) + "\n" + lexer_.place(where) +
-                ": " + note);
-}
-
-void SceneReader::read_top_level_object(Scene& scene, bool& have_viewer) {
-    const Location where = next_location();
-    // A bad token here is often a number too many or too few in the object before it, so
-    // errors about the ID say where that object began and how much of the input it took.
-    const long numbers_before = numbers_read_;
-    const Location last_number_before = last_number_;
-    long type_id = 0;
-    try {
-        type_id = id("object ID");
-    } catch (const Error& e) {
-        const std::string note = previous_object_note(where, numbers_before, last_number_before);
-        if (note.empty()) throw;
-        throw Error(std::string(e.what()) + "\n" + lexer_.place(where) + ": " + note);
-    }
-    const int small = static_cast<int>(type_id);
-    const bool known = find_primitive_type(small) || find_light_type(small) ||
-                       type_id == kViewerId || type_id == kAmbientLightId ||
-                       type_id == kDefaultSurfaceId;
-    if (!known) {
-        if (find_surface_type(small) != nullptr || type_id == kUseDefaultSurfaceId)
-            fail_at_object_id(where,
-                              "surface " + describe_id(type_id) +
-                                  " found where an object is expected; a surface must follow a "
-                                  "primitive",
-                              numbers_before, last_number_before);
-        fail_at_object_id(where, "unknown object ID " + last_number_text(), numbers_before,
-                          last_number_before);
-    }
-    begin_object(type_id, where, true);
-    if (const PrimitiveType* type = find_primitive_type(small)) {
-        Object object;
-        object.shape = {type, type->functions->read(*this)};
-        // CSG (and an affine of CSG) carries its operands' surfaces and has none of its own.
-        if (!object.shape.carries_surfaces()) object.surface = surface();
-        scene.objects.push_back(std::move(object));
-    } else if (const LightType* light_type = find_light_type(small)) {
-        scene.lights.push_back({light_type, light_type->read(*this)});
-        light_samples_ += scene.lights.back().sample_count();
-        if (light_samples_ > kMaxLightSamples)
-            fail(where, "too many light samples: with this light the scene's lights take " +
-                            std::to_string(light_samples_) + " samples, more than the limit of " +
-                            std::to_string(kMaxLightSamples) +
-                            " (each is a shadow ray for every point lit)");
-    } else if (type_id == kViewerId) {
-        if (have_viewer) fail(where, "a second viewer (102); a scene has exactly one");
-        scene.viewer = read_viewer();
-        have_viewer = true;
-    } else if (type_id == kAmbientLightId) {
-        const Vec3 intensity = vec3("ambient light intensity");
-        scene.ambient += Spectrum(intensity.x, intensity.y, intensity.z);
-    } else if (type_id == kDefaultSurfaceId) {
-        default_surface_ = surface();
-    }
-}
-
-Scene SceneReader::read_scene() {
-    Scene scene;
-    bool have_viewer = false;
-    while (!lexer_.peek().at_end()) read_top_level_object(scene, have_viewer);
-    if (!have_viewer) fail(lexer_.peek().where, "no viewer (102) in the scene; one is required");
-    scene.skipped_triangles = skipped_triangles_;
-    scene.splits_rays = splits_rays_;
-    return scene;
-}
-
-Scene read_scene(std::istream& in, const std::string& name, const std::filesystem::path& base_dir,
-                 int threads, StageTimes* times, std::vector<std::filesystem::path>* textures) {
-    using Clock = std::chrono::steady_clock;
-    const auto start = Clock::now();
-    SceneReader reader(in, name, base_dir, threads);
-    Scene scene = reader.read_scene();
-    if (textures != nullptr) *textures = reader.texture_paths();
-    const auto read = Clock::now();
-    scene.build_index(threads);
-    if (times != nullptr) {
-        times->read = std::chrono::duration<double>(read - start).count();
-        times->build = std::chrono::duration<double>(Clock::now() - read).count();
-    }
-    return scene;
-}
-
-Scene read_scene_file(const std::string& path, int threads, StageTimes* times,
-                      std::vector<std::filesystem::path>* textures) {
-    // Read through a descriptor, so that a read error is reported as one, with its reason,
-    // rather than taken for the end of the scene.
-    if (path == "-") {
-        struct stat st {};
-        if (::fstat(0, &st) != 0)
-            throw Error(std::string("<stdin>: cannot read the scene from standard input: ") +
-                        std::strerror(errno));
-        FdBuf buffer(0, "<stdin>: cannot read the scene", false);
-        std::istream in(&buffer);
-        return read_scene(in, "<stdin>", std::filesystem::current_path(), threads, times, textures);
-    }
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec))
-        throw Error(path + ": is a directory, not a scene file");
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) throw Error(path + ": cannot open scene file: " + std::strerror(errno));
-    FdBuf buffer(fd, path + ": cannot read the scene", true);
-    std::istream in(&buffer);
-    return read_scene(in, path, std::filesystem::path(path).parent_path(), threads, times,
-                      textures);
 }
 
 }  // namespace rt

@@ -1,25 +1,20 @@
-// PPM images: the renderer's output (P6) and textures (P6 or P3).
+// Textures, the images image-mapped surfaces (108) wear: read through the image library (PNG,
+// PPM or PGM, PFM, as the file's first bytes say), from regular files only.
 #pragma once
 
+#include <compare>
 #include <cstdint>
 #include <filesystem>
-#include <ostream>
-#include <string>
-#include <string_view>
+#include <map>
+#include <memory>
 #include <vector>
 
-#include "rt/raster.h"
+#include "rt/spectrum.h"
 
 namespace rt {
 
-// round(255 * clamp(c, 0, 1)); NaN counts as 0.
-std::uint8_t to_byte(double c);
-
-// Writes the raster as binary PPM (P6, maxval 255), without metadata: encode_image with the
-// default encoding.
-void write_ppm(std::ostream& out, const Raster& raster);
-
-// An image read from a PPM file, components scaled to [0, 1], rows from the top.
+// A texture's colours, rows from the top: PPM and PNG samples divided by the file's maximum
+// value, PFM values as they are (docs/format.md, 108).
 struct Image {
     int width = 0;
     int height = 0;
@@ -30,9 +25,6 @@ struct Image {
         return {values[i], values[i + 1], values[i + 2]};
     }
 };
-
-// The largest texture rt reads, in pixels.
-inline constexpr long kMaxImagePixels = 64L * 1024 * 1024;
 
 // A file's identity: the same file under any name (links, ./, ..) has the same one.
 struct FileId {
@@ -45,8 +37,24 @@ struct FileId {
 // otherwise (a FIFO or a device is refused without being opened, so it cannot block).
 FileId texture_file(const std::filesystem::path& path);
 
-// Reads a P6 or P3 regular file; throws rt::Error("<reason>") without a location, which the caller
-// adds.
-Image read_ppm(const std::filesystem::path& path);
+// Reads a texture from a regular file; throws rt::Error("<reason>") without a location, which
+// the caller adds.
+Image read_texture(const std::filesystem::path& path);
+
+// The textures one scene has loaded: each file once, however many surfaces name it, by
+// whatever path.
+class TextureCache {
+  public:
+    // The texture at `resolved`, read the first time its file is named; throws
+    // rt::Error("<reason>") as read_texture does.
+    std::shared_ptr<const Image> load(const std::filesystem::path& resolved);
+    // Every path named so far, each once, in the order first named.
+    const std::vector<std::filesystem::path>& paths() const { return paths_; }
+    std::size_t files() const { return images_.size(); }
+
+  private:
+    std::map<FileId, std::shared_ptr<const Image>> images_;  // by file, not by name
+    std::vector<std::filesystem::path> paths_;
+};
 
 }  // namespace rt
