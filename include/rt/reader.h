@@ -9,9 +9,9 @@
 #include <string_view>
 #include <vector>
 
+#include "rt/error.h"
 #include "rt/light.h"
 #include "rt/limits.h"  // the bounds the reader holds a scene to
-#include "rt/location.h"
 #include "rt/primitive.h"
 #include "rt/scene.h"
 #include "rt/surface.h"
@@ -134,7 +134,14 @@ class SceneReader {
 // read functions, which report what they computed.
 std::string format_number(double value);
 
-struct StageTimes;
+// Seconds spent in each stage of a run: the scene's loading fills read and build, rt's job
+// the rest (--stats prints them).
+struct StageTimes {
+    double read = 0;    // reading and checking the scene
+    double build = 0;   // building its hierarchy
+    double render = 0;  // tracing every pixel
+    double write = 0;   // encoding and writing the image
+};
 
 // Convenience wrappers: read a whole scene from a stream or a file ("-" for stdin) and build
 // its hierarchy on up to `threads` threads. With `times`, the seconds spent reading and

@@ -84,7 +84,7 @@ class Tracer {
 
     const Scene& scene_;
     const ObjectIndex* index_;  // the scene's hierarchy, when options_.accelerate
-    RenderOptions options_;  // a copy: small, and safe when built from a temporary
+    RenderOptions options_;     // a copy: small, and safe when built from a temporary
     RenderStats stats_;
     // Per light, the object that last blocked a shadow ray toward it.
     std::vector<LastBlocker> last_blockers_;

@@ -32,7 +32,8 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
     bounded.reserve(objects.size());
     for (std::uint32_t i = 0; i < objects.size(); ++i) {
         const Shape& shape = objects[i].shape;
-        const Entry entry{shape.intersect_function(), shape.any_hit_function(), shape.data.get(), i};
+        const Entry entry{shape.intersect_function(), shape.any_hit_function(), shape.data.get(),
+                          i};
         const Bounds box = shape.bounds();
         if (finite_box(box)) {
             boxes.push_back(box);

@@ -5,17 +5,10 @@
 #include <cstdint>
 #include <string>
 
+#include "rt/reader.h"  // StageTimes
 #include "rt/trace.h"
 
 namespace rt {
-
-// Seconds spent in each stage of a run.
-struct StageTimes {
-    double read = 0;    // reading and checking the scene
-    double build = 0;   // building its hierarchy
-    double render = 0;  // tracing every pixel
-    double write = 0;   // encoding and writing the image
-};
 
 struct RunStatistics {
     StageTimes times;

@@ -10,8 +10,8 @@
 #include <cstdio>
 #include <cstring>
 
-#include "rt/error.h"
 #include "common/interrupt.h"
+#include "rt/error.h"
 
 namespace rt {
 

@@ -93,9 +93,8 @@ bool needs_supersampling(const Window& one_ray, const PixelRect& known, int x, i
 // They need the one-ray values of a one-pixel margin around `rect` (within the image), which
 // `raster` must cover: a region of the image rendered this way decides at its edges exactly
 // as the whole image does.
-void render_adaptive(std::vector<Tracer>& tracers, const PixelRect& rect,
-                     const PixelRect& image, double threshold, Window& raster,
-                     RenderProgress* progress) {
+void render_adaptive(std::vector<Tracer>& tracers, const PixelRect& rect, const PixelRect& image,
+                     double threshold, Window& raster, RenderProgress* progress) {
     const PixelRect known = with_margin(rect, image);
     // The one-ray pass and the grid pass trace; deciding is quick and not counted.
     if (progress != nullptr)

@@ -1,11 +1,10 @@
-#include "rt/trace.h"
-
-#include "accel/object_index.h"
-#include "rt/optics.h"
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+
+#include "accel/object_index.h"
+#include "rt/optics.h"
+#include "rt/trace.h"
 
 namespace rt {
 
@@ -53,14 +52,14 @@ Spectrum transmittance(const Spectrum& absorption, double t) {
 
 // Where a switch over RenderMode meets a value outside it. Out of line, so that the code that
 // builds the exception does not stand in the way of inlining its caller.
-[[noreturn]] void not_a_render_mode() {
-    throw std::logic_error("Tracer: not a render mode");
-}
+[[noreturn]] void not_a_render_mode() { throw std::logic_error("Tracer: not a render mode"); }
 
 }  // namespace
 
 Tracer::Tracer(const Scene& scene, const RenderOptions& options)
-    : scene_(scene), index_(scene.index.get()), options_(options),
+    : scene_(scene),
+      index_(scene.index.get()),
+      options_(options),
       last_blockers_(scene.lights.size()) {
     if (options_.accelerate && (index_ == nullptr || !index_->covers(scene_.objects.size())))
         throw std::logic_error("Tracer: the scene's index was not built (Scene::build_index)");
@@ -86,9 +85,7 @@ std::optional<SceneHit> Tracer::closest_hit(const Ray& ray) {
     return best;
 }
 
-bool Tracer::blocked(const Ray& ray, double distance) {
-    return blocked(ray, distance, nullptr);
-}
+bool Tracer::blocked(const Ray& ray, double distance) { return blocked(ray, distance, nullptr); }
 
 bool Tracer::blocked(const Ray& ray, double distance, LastBlocker* last) {
     ++stats_.shadow_rays;

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "common/message_text.h"  // how messages show a token
+#include "rt/error.h"
 #include "rt/limits.h"
-#include "rt/location.h"
 
 namespace rt {
 

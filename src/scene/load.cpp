@@ -8,7 +8,6 @@
 #include <cstring>
 #include <istream>
 
-#include "batch/statistics.h"
 #include "common/fd_stream.h"
 #include "rt/error.h"
 #include "rt/reader.h"
