@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "rt/error.h"
 #include "rt/spectrum.h"
 #include "rt/vec.h"
 
@@ -134,3 +135,21 @@ class Random {
             rt_test::record_failure(__FILE__, __LINE__,                                         \
                                     "'" + rt_text_ + "' does not contain '" + rt_piece_ + "'"); \
     } while (0)
+
+namespace rt_test {
+
+// The message of the rt::Error the call throws, or "no error".
+inline std::string error_of(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const rt::Error& e) {
+        return e.what();
+    }
+    return "no error";
+}
+
+}  // namespace rt_test
+
+// Checks that evaluating an expression throws rt::Error with exactly this message.
+#define CHECK_ERROR(expression, message) \
+    CHECK_EQ(rt_test::error_of([&] { (void)(expression); }), std::string(message))

@@ -22,18 +22,6 @@ using Triangles = std::vector<Triangle>;
 using Points = std::vector<Vec3>;
 using Notes = std::vector<std::string>;
 
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "no error";
-}
-
-#define CHECK_ERROR(expression, message) \
-    CHECK_EQ(error_of([&] { (void)(expression); }), std::string(message))
-
 MeshFile obj(const std::string& text) { return read_obj(text, "t.obj"); }
 
 const std::string kSquare = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";

@@ -103,19 +103,6 @@ std::string ply(Order order, const std::string& elements, const std::vector<Reco
     return header(order, elements) + body(order, records);
 }
 
-// The message of the rt::Error the call throws, or "no error".
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "no error";
-}
-
-#define CHECK_ERROR(expression, message) \
-    CHECK_EQ(error_of([&] { (void)(expression); }), std::string(message))
-
 const std::string kXyzFloat = "property float x\nproperty float y\nproperty float z\n";
 const std::string kFaceList = "element face 1\nproperty list uchar int vertex_indices\n";
 

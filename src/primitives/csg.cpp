@@ -200,33 +200,23 @@ bool inside(const void* shape, const Vec3& point) {
 
 bool carries_surfaces(const void*) { return true; }
 
+// Composites: their operands bring their own surfaces, and the boundary is found from
+// the operands' crossings. The three differ only in how they read.
+constexpr PrimitiveFunctions composite(ReadShapeFn* read_operation) {
+    return {.read = read_operation,
+            .intersect = intersect,
+            .normal = normal,
+            .bounds = bounds,
+            .inside = inside,
+            .carries_surfaces = carries_surfaces,
+            .collect = collect,
+            .solid_bounds = solid_bounds};
+}
+
 }  // namespace
 
-// Composites: their operands bring their own surfaces, and the boundary is found from
-// the operands' crossings.
-extern const PrimitiveFunctions union_functions{.read = read_union,
-                                                .intersect = intersect,
-                                                .normal = normal,
-                                                .bounds = bounds,
-                                                .inside = inside,
-                                                .carries_surfaces = carries_surfaces,
-                                                .collect = collect,
-                                                .solid_bounds = solid_bounds};
-extern const PrimitiveFunctions intersection_functions{.read = read_intersection,
-                                                       .intersect = intersect,
-                                                       .normal = normal,
-                                                       .bounds = bounds,
-                                                       .inside = inside,
-                                                       .carries_surfaces = carries_surfaces,
-                                                       .collect = collect,
-                                                       .solid_bounds = solid_bounds};
-extern const PrimitiveFunctions difference_functions{.read = read_difference,
-                                                     .intersect = intersect,
-                                                     .normal = normal,
-                                                     .bounds = bounds,
-                                                     .inside = inside,
-                                                     .carries_surfaces = carries_surfaces,
-                                                     .collect = collect,
-                                                     .solid_bounds = solid_bounds};
+extern const PrimitiveFunctions union_functions = composite(read_union);
+extern const PrimitiveFunctions intersection_functions = composite(read_intersection);
+extern const PrimitiveFunctions difference_functions = composite(read_difference);
 
 }  // namespace rt::csg
