@@ -212,8 +212,9 @@ TEST(smooth_mesh_errors_name_their_places) {
     CHECK_CONTAINS(scene_error(join(kTestViewer, "16 3 1\n", v, "0 1 1\n", kSurface)),
                    "test.in:2:6: smooth mesh has no triangle with non-zero area (all 1 are "
                    "degenerate)");
-    CHECK_CONTAINS(scene_error(join(kTestViewer, "16 3 1\n", v, "0 1 1.5\n", kSurface)),
-                   "test.in:4:5: smooth mesh triangle 0 vertex index must be a whole number, got 1.5");
+    CHECK_CONTAINS(
+        scene_error(join(kTestViewer, "16 3 1\n", v, "0 1 1.5\n", kSurface)),
+        "test.in:4:5: smooth mesh triangle 0 vertex index must be a whole number, got 1.5");
     CHECK_CONTAINS(scene_error(join(kTestViewer, "16 3 1\n1e101 0 0  0 0 1\n")),
                    "test.in:3:1: smooth mesh vertex 0 coordinates must be at most 1e+100");
     CHECK_CONTAINS(scene_error(join(kTestViewer, "16 3 1\n", v, "0 1\n")),
@@ -221,9 +222,9 @@ TEST(smooth_mesh_errors_name_their_places) {
 }
 
 TEST(the_hierarchy_agrees_with_the_linear_scan) {
-    const std::string text = join(viewer(48), kLight, uv_sphere(10, 20, true),
-                                  "100 0.9 0.9 0.9 0.5 30 0.4 0 1\n",
-                                  "2 0  0 1 0  100 0.3 0.6 0.3 0 1 0.9 0 1\n");
+    const std::string text =
+        join(viewer(48), kLight, uv_sphere(10, 20, true), "100 0.9 0.9 0.9 0.5 30 0.4 0 1\n",
+             "2 0  0 1 0  100 0.3 0.6 0.3 0 1 0.9 0 1\n");
     const Raster a = render_text(text, true), b = render_text(text, false);
     bool same = true;
     for (int y = 0; y < 48; ++y)

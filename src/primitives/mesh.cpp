@@ -24,8 +24,7 @@ ShapeData read(SceneReader& reader) {
     const long triangle_count = reader.whole("mesh triangle count", 1, mesh_core::kMaxCount);
 
     Core mesh;
-    mesh.vertices.reserve(
-        static_cast<std::size_t>(std::min(vertex_count, mesh_core::kMaxReserve)));
+    mesh.vertices.reserve(static_cast<std::size_t>(std::min(vertex_count, mesh_core::kMaxReserve)));
     for (long i = 0; i < vertex_count; ++i)
         mesh.vertices.push_back(mesh_core::read_vertex(reader, "mesh vertex ", i));
     mesh.vertices.shrink_to_fit();

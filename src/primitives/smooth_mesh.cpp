@@ -32,8 +32,7 @@ struct SmoothMesh {
 ShapeData read(SceneReader& reader) {
     const long vertex_count = reader.whole("smooth mesh vertex count", 3, mesh_core::kMaxCount);
     const Location count_at = reader.next_location();
-    const long triangle_count =
-        reader.whole("smooth mesh triangle count", 1, mesh_core::kMaxCount);
+    const long triangle_count = reader.whole("smooth mesh triangle count", 1, mesh_core::kMaxCount);
 
     SmoothMesh mesh;
     const auto reserve = static_cast<std::size_t>(std::min(vertex_count, mesh_core::kMaxReserve));
@@ -63,7 +62,9 @@ ShapeData read(SceneReader& reader) {
     return std::make_shared<const SmoothMesh>(std::move(mesh));
 }
 
-const mesh_core::Core& core(const void* shape) { return static_cast<const SmoothMesh*>(shape)->core; }
+const mesh_core::Core& core(const void* shape) {
+    return static_cast<const SmoothMesh*>(shape)->core;
+}
 
 bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
     return mesh_core::closest(core(shape), ray, range, hit);
