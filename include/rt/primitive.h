@@ -94,6 +94,10 @@ struct PrimitiveFunctions {
     // A box containing the solid (its inside), where that is not the box of the surface: a
     // quadric's solid is not clipped. nullptr: the same as bounds.
     BoundsFn* solid_bounds = nullptr;
+    // The unit outward normal that shading uses (the Phong terms, the mirror and refracted
+    // directions), where it is not the geometric one: a smooth mesh's blend of vertex
+    // normals. nullptr (the usual case): the normal, which then does both jobs.
+    NormalFn* shading_normal = nullptr;
 };
 
 // One row of the table: the scene format's ID, the name messages use, and what it does.
@@ -130,6 +134,12 @@ struct Shape {
     }
     Vec3 normal(const Vec3& point, const Hit& hit) const {
         return functions->normal(data.get(), point, hit);
+    }
+    bool has_shading_normal() const { return functions->shading_normal != nullptr; }
+    // The shading normal, or the normal where the type has none of its own.
+    Vec3 shading_normal(const Vec3& point, const Hit& hit) const {
+        return has_shading_normal() ? functions->shading_normal(data.get(), point, hit)
+                                    : normal(point, hit);
     }
     Bounds bounds() const { return functions->bounds(data.get()); }
     bool has_inside() const {

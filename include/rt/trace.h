@@ -76,8 +76,10 @@ class Tracer {
 
   private:
     bool blocked(const Ray& ray, double distance, LastBlocker* last);
-    Spectrum direct_light(const Vec3& point, const Vec3& facing_normal, const Vec3& reflected,
-                          const Material& m, double ks);
+    // facing_normal: the geometric normal turned to the ray; shading: the shading normal, the
+    // same side (the same vector but for a smooth mesh).
+    Spectrum direct_light(const Vec3& point, const Vec3& facing_normal, const Vec3& shading,
+                          const Vec3& reflected, const Material& m, double ks);
     bool may_trace(int depth, double weight) const {
         return depth <= options_.max_depth && weight >= options_.min_weight;
     }

@@ -87,6 +87,14 @@ Vec3 normal(const void* shape, const Vec3& point, const Hit& hit) {
     return normalized(a.frame.normal_to_world(local_normal));
 }
 
+// The inner primitive's shading normal (its normal where it has none of its own, so that this
+// is then the normal above, bit for bit), carried back as the normal is.
+Vec3 shading_normal(const void* shape, const Vec3& point, const Hit& hit) {
+    const auto& a = *static_cast<const Affine*>(shape);
+    const Vec3 local_normal = a.inner.shading_normal(a.frame.to_local_point(point), hit);
+    return normalized(a.frame.normal_to_world(local_normal));
+}
+
 Bounds bounds(const void* shape) { return static_cast<const Affine*>(shape)->box; }
 
 Bounds solid_bounds(const void* shape) {
@@ -118,6 +126,7 @@ extern const PrimitiveFunctions functions{.read = read,
                                           .intersect_any = intersect_any,
                                           .carries_surfaces = carries_surfaces,
                                           .collect = collect,
-                                          .solid_bounds = solid_bounds};
+                                          .solid_bounds = solid_bounds,
+                                          .shading_normal = shading_normal};
 
 }  // namespace rt::affine

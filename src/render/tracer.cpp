@@ -50,6 +50,19 @@ Spectrum transmittance(const Spectrum& absorption, double t) {
     return left;
 }
 
+// A shading normal turned to the side the ray arrives on (as the face normal was, by
+// `leaving`), and kept in the hemisphere the ray comes from: where it still faces away from
+// the ray (near a coarse mesh's silhouette), it is reflected across the plane perpendicular
+// to the ray, which is continuous where it grazes and leaves the rest alone. Without that, the
+// mirror direction would point into the surface and the lights behind the viewer's horizon
+// would shade the point: the black speckles of a coarse smooth mesh.
+Vec3 visible_shading_normal(const Vec3& outward, bool leaving, const Vec3& direction) {
+    const Vec3 s = leaving ? -outward : outward;
+    const double toward = -dot(s, direction);
+    if (!(toward < 0)) return s;
+    return normalized(s + 2 * toward * direction);
+}
+
 // Where a switch over RenderMode meets a value outside it. Out of line, so that the code that
 // builds the exception does not stand in the way of inlining its caller.
 [[noreturn]] void not_a_render_mode() { throw std::logic_error("Tracer: not a render mode"); }
@@ -97,8 +110,8 @@ bool Tracer::blocked(const Ray& ray, double distance, LastBlocker* last) {
     });
 }
 
-Spectrum Tracer::direct_light(const Vec3& point, const Vec3& facing_normal, const Vec3& reflected,
-                              const Material& m, double ks) {
+Spectrum Tracer::direct_light(const Vec3& point, const Vec3& facing_normal, const Vec3& shading,
+                              const Vec3& reflected, const Material& m, double ks) {
     Spectrum total(0.0);
     for (std::size_t l = 0; l < scene_.lights.size(); ++l) {
         const Light& light = scene_.lights[l];
@@ -106,11 +119,16 @@ Spectrum Tracer::direct_light(const Vec3& point, const Vec3& facing_normal, cons
         for (int i = 0; i < samples; ++i) {
             const LightSample s = light.sample(point, i);
             const double facing = dot(facing_normal, s.direction);
-            if (!(facing > 0) || s.intensity.is_black()) continue;
+            // A light lights the point when the face and the shading normal both face it:
+            // the face, so that no light leaks through a surface from behind; the shading
+            // normal, so that its diffuse term is never negative. (Where they are the same
+            // vector, as for every primitive but the smooth mesh, the two tests are one.)
+            const double lambert = dot(shading, s.direction);
+            if (!(facing > 0) || !(lambert > 0) || s.intensity.is_black()) continue;
             if (options_.shadows && blocked({point, s.direction}, s.distance, &last_blockers_[l]))
                 continue;
             Spectrum term(0.0);
-            if (options_.diffuse) term += m.colour * (m.kd * facing);
+            if (options_.diffuse) term += m.colour * (m.kd * lambert);
             const double highlight = dot(reflected, s.direction);
             if (options_.specular && ks > 0 && highlight > 0)
                 term += Spectrum(ks * std::pow(highlight, m.ke));
@@ -132,13 +150,23 @@ Spectrum Tracer::trace(const Ray& ray, int depth, double weight, double ior,
     const Vec3 outward = object.shape.normal(point, found->hit);
     const bool leaving = dot(ray.direction, outward) > 0;
     const Vec3 facing = leaving ? -outward : outward;  // d in the Phong model
+    // The geometric normal (the face's) decides the side; a smooth mesh shades with its own.
+    const bool smooth = object.shape.has_shading_normal();
+    const Vec3 shading =
+        smooth ? visible_shading_normal(object.shape.shading_normal(point, found->hit), leaving,
+                                        ray.direction)
+               : facing;
     const Material m = object.surface_at(found->hit).at(point);
     Spectrum result(0.0);
 
     // Transmission comes first: on total internal reflection its weight joins the mirror's.
     // The refracted ray enters the medium behind the surface, or leaving returns to air.
     const double next_ior = leaving ? 1.0 : m.ior;
-    const Split split = split_light(m, ray.direction, facing, ior, next_ior, options_.refraction);
+    Split split = split_light(m, ray.direction, shading, ior, next_ior, options_.refraction);
+    // A refracted ray must cross the face: where the shading normal would keep it on the near
+    // side, the surface refracts about its face instead.
+    if (smooth && split.refracted && !(dot(*split.refracted, facing) < 0))
+        split = split_light(m, ray.direction, facing, ior, next_ior, options_.refraction);
     const double kt = split.transmit;
     if (split.refracted && kt > 0 && options_.refraction && may_trace(depth + 1, weight * kt)) {
         ++stats_.refracted_rays;
@@ -147,9 +175,12 @@ Spectrum Tracer::trace(const Ray& ray, int depth, double weight, double ior,
     }
 
     if (options_.ambient) result += scene_.ambient * m.colour * m.kd;
-    const Vec3 reflected = reflect(ray.direction, facing);
+    Vec3 reflected = reflect(ray.direction, shading);
+    // A mirrored ray must leave the face: where the shading normal would send it into the
+    // surface, the surface mirrors about its face instead.
+    if (smooth && !(dot(reflected, facing) > 0)) reflected = reflect(ray.direction, facing);
     if (options_.diffuse || options_.specular)
-        result += direct_light(point, facing, reflected, m, split.highlight);
+        result += direct_light(point, facing, shading, reflected, m, split.highlight);
     // The reflected ray stays in the medium it came through.
     const double ks = split.mirror;
     if (ks > 0 && options_.reflection && may_trace(depth + 1, weight * ks)) {
@@ -174,7 +205,7 @@ Spectrum Tracer::shade_primary(const Ray& ray) {
         case RenderMode::colour:
             return found->object->surface_at(found->hit).at(point).colour;
         case RenderMode::normal: {
-            const Vec3 n = found->object->shape.normal(point, found->hit);
+            const Vec3 n = found->object->shape.shading_normal(point, found->hit);
             return Spectrum(std::fabs(dot(n, ray.direction)));
         }
         case RenderMode::trace:  // traced above

@@ -246,6 +246,7 @@ void Emitter::field(const ObjectValue& object, const FieldSpec& spec) {
             return;
         }
         case Write::indexed:
+        case Write::indexed_normals:
             return indexed(object, spec);
         case Write::none:
             return;
@@ -281,9 +282,18 @@ void Emitter::indexed(const ObjectValue& object, const FieldSpec& spec) {
     if (list.empty() || triangles.empty())
         fail(object.pos, std::string(object.kind->keyword) + " needs at least one " + spec.name +
                              " and one " + spec.other);
+    const bool normals = spec.write == Write::indexed_normals;
+    const auto normal = normals ? f.all("normal") : decltype(list){};
+    if (normals && normal.size() != list.size())
+        fail(object.pos, std::string(object.kind->keyword) + " needs one normal per vertex (" +
+                             std::to_string(list.size()) + " vertices, " +
+                             std::to_string(normal.size()) + " normals)");
     number(static_cast<double>(list.size()));
     number(static_cast<double>(triangles.size()));
-    for (const FieldValue* v : list) vector(v->value.vector);
+    for (std::size_t i = 0; i < list.size(); ++i) {
+        vector(list[i]->value.vector);
+        if (normals) vector(normal[i]->value.vector);
+    }
     const double count = static_cast<double>(list.size());
     for (const FieldValue* t : triangles) {
         for (int i = 0; i < 3; ++i) {

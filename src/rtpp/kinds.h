@@ -40,6 +40,9 @@ enum class Write {
     // A mesh: the counts of this repeated vector and of `other`, this one's vectors, then
     // the other's, checked as index triples into this one.
     indexed,
+    // A smooth mesh: as indexed, with each vertex followed by the repeated `normal` vector of
+    // the same place (as many normals as vertices).
+    indexed_normals,
     // Nothing where it stands: the other of a pair, or a flag that chooses the ID (`id`
     // when true). A camera's fields are all read together (Emitter::camera).
     none,

@@ -1,0 +1,82 @@
+#include "primitives/mesh_core.h"
+
+#include <cmath>
+
+#include "rt/reader.h"
+
+namespace rt::mesh_core {
+
+Vec3 read_vertex(SceneReader& reader, std::string_view name, long i) {
+    const Location at = reader.next_location();
+    const Label what(name, i);
+    const Vec3 v = reader.vec3(what);
+    if (!(max_abs_component(v) <= kMaxCoordinate))
+        reader.fail(at, what.str() + " coordinates must be at most " +
+                            format_number(kMaxCoordinate) + " in absolute value");
+    return v;
+}
+
+std::uint32_t read_index(SceneReader& reader, std::string_view name, long triangle,
+                         long vertex_count) {
+    const Location at = reader.next_location();
+    const Label what(name, triangle, " vertex index");
+    const double value = reader.number(what);
+    if (value != std::floor(value))
+        reader.fail(at, what.str() + " must be a whole number, got " + reader.last_number_text());
+    if (value < 0 || value >= static_cast<double>(vertex_count))
+        reader.fail(at, what.str() + " must be in [0, " + std::to_string(vertex_count) + "), got " +
+                            reader.last_number_text());
+    return static_cast<std::uint32_t>(value);
+}
+
+void finish(Core& core, std::vector<Triangle>& triangles, std::vector<Bounds>& boxes, int threads) {
+    if (triangles.empty()) return;
+    // The hierarchy numbers triangles in leaf order; store them in that order.
+    core.bvh = Bvh(boxes, threads);
+    boxes = {};
+    core.triangles.reserve(triangles.size());
+    for (const std::uint32_t i : core.bvh.take_order()) core.triangles.push_back(triangles[i]);
+}
+
+bool closest(const Core& m, const Ray& ray, Interval range, Hit& hit) {
+    const TriangleRay triangle_ray(ray);
+    double best = range.t_max;
+    const Triangle* best_triangle = nullptr;
+    std::uint32_t best_position = 0;
+    // Of triangles hit at the same distance, the one written first wins, whatever order the
+    // hierarchy visits them in.
+    m.bvh.closest(ray, range.t_min, best, [&](std::uint32_t position) {
+        const Triangle& tri = m.triangles[position];
+        double t = 0;
+        if (!triangle_ray.crosses(m.vertex(tri, 0), m.vertex(tri, 1), m.vertex(tri, 2), t) ||
+            !(t > range.t_min))
+            return;
+        if (t < best ||
+            (t == best && best_triangle != nullptr && tri.place() < best_triangle->place())) {
+            best = t;
+            best_triangle = &tri;
+            best_position = position;
+        }
+    });
+    if (best_triangle == nullptr) return false;
+    hit = {best, static_cast<int>(best_position)};
+    return true;
+}
+
+bool any(const Core& m, const Ray& ray, Interval range) {
+    const TriangleRay triangle_ray(ray);
+    return m.bvh.any(ray, range.t_min, range.t_max, [&](std::uint32_t position) {
+        const Triangle& tri = m.triangles[position];
+        double t = 0;
+        return triangle_ray.crosses(m.vertex(tri, 0), m.vertex(tri, 1), m.vertex(tri, 2), t) &&
+               range.contains(t);
+    });
+}
+
+Vec3 face(const Core& m, const Hit& hit) {
+    const Triangle& tri = m.triangle(hit);
+    const Vec3 n = face_normal(m.vertex(tri, 0), m.vertex(tri, 1), m.vertex(tri, 2));
+    return tri.flipped() ? -n : n;
+}
+
+}  // namespace rt::mesh_core
