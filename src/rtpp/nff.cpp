@@ -4,8 +4,12 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
 #include <limits>
 #include <numbers>
+#include <sstream>
 #include <stdexcept>
 #include <string_view>
 #include <vector>
@@ -606,6 +610,21 @@ class Translator {
 void translate_nff(std::istream& in, const std::string& name, std::ostream& out,
                    const NffOptions& options) {
     Translator(in, name, out, options).run();
+}
+
+std::string translate_nff_file(const std::string& path, const NffOptions& options) {
+    std::ostringstream out;
+    if (path == "-") {
+        translate_nff(std::cin, "<stdin>", out, options);
+        return std::move(out).str();
+    }
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw CompileError(path + ": is a directory, not a scene");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw CompileError(path + ": cannot open");
+    translate_nff(in, path, out, options);
+    return std::move(out).str();
 }
 
 }  // namespace rtpp
