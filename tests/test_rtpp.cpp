@@ -511,3 +511,21 @@ TEST(an_interrupted_rtpp_leaves_no_temporary_file) {
     CHECK(litter(dir).empty());
     CHECK_EQ(read_file(dir / "out.in"), std::string("old"));
 }
+
+TEST(background_writes_115_once) {
+    CHECK_EQ(last_line("background { colour <0.25, 0.5, 1> }"), std::string("115 0.25 0.5 1"));
+    CHECK_EQ(last_line("background { colour 0.5 }"), std::string("115 0.5 0.5 0.5"));
+    CHECK_EQ(error_of(kCamera + "background { colour 0 }\nbackground { colour 1 }\n"),
+             std::string("t.rts:3:1: a second background; a scene has at most one, the first is "
+                         "at t.rts:2:1"));
+    CHECK_CONTAINS(error_of(kCamera + "background { colour 0 translate <1, 0, 0> }"),
+                   "t.rts:2:23: a background cannot be transformed");
+    CHECK_CONTAINS(error_of(kCamera + "group { background { colour 0 } translate <1, 0, 0> }"),
+                   "t.rts:2:9: a background cannot be transformed");
+    CHECK_CONTAINS(error_of(kCamera + "background { }"), "colour");
+    // What rtpp writes, rt reads: the background is the scene's.
+    std::istringstream in(
+        rtpp::compile(kCamera + "background { colour <0.25, 0.5, 1> }", "t.rts", "."));
+    const rt::Scene scene = rt::read_scene(in, "t.in");
+    CHECK(scene.background.has_value());
+}

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <istream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -117,6 +118,7 @@ class SceneReader {
     std::unique_ptr<TextureCache> textures_;
     std::filesystem::path base_dir_;
     SurfacePtr default_surface_;
+    std::optional<Location> background_where_;  // where the scene's 115 is, once read
     int depth_ = 0;
     long numbers_read_ = 0;         // every number token so far, IDs included
     Location last_number_;          // where the last of them began

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "rt/light.h"
@@ -37,6 +38,8 @@ struct Scene {
     std::vector<Object> objects;
     std::vector<Light> lights;
     Spectrum ambient{0.0};  // the sum of the ambient lights (ID 103)
+    // What a ray that hits nothing brings back (ID 115); without it, the ambient intensity.
+    std::optional<Spectrum> background;
     // The hierarchy over `objects`, once build_index() has run; shared by copies of the scene.
     std::shared_ptr<const ObjectIndex> index;
     // Zero-area triangles that meshes left out (they are accepted, not errors).

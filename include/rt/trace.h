@@ -88,6 +88,7 @@ class Tracer {
     const ObjectIndex* index_;  // the scene's hierarchy, when options_.accelerate
     RenderOptions options_;     // a copy: small, and safe when built from a temporary
     RenderStats stats_;
+    Spectrum escaped_;  // what a traced ray that hits nothing brings back
     // Per light, the object that last blocked a shadow ray toward it.
     std::vector<LastBlocker> last_blockers_;
 };

@@ -70,7 +70,14 @@ int print_summary(const CommandLine& cl, const Scene& scene) {
     std::ostringstream summary;
     const std::string name = cl.input == "-" ? "<stdin>" : show_token(cl.input, kShowWhole);
     summary << name << ": " << scene.objects.size() << " objects, " << scene.lights.size()
-            << " lights, " << scene.viewer.xres << "x" << scene.viewer.yres;
+            << " lights, ";
+    // The background is no light, but it is what lights the image where nothing is hit.
+    if (const auto& b = scene.background) {
+        summary << "background";
+        for (std::size_t i = 0; i < kSpectrumComponents; ++i) summary << " " << (*b)[i];
+        summary << ", ";
+    }
+    summary << scene.viewer.xres << "x" << scene.viewer.yres;
     if (const std::size_t n = scene.skipped_triangles; n != 0)
         summary << ", " << n << " zero-area " << (n == 1 ? "triangle" : "triangles") << " skipped";
     summary << "\n";

@@ -73,6 +73,7 @@ Tracer::Tracer(const Scene& scene, const RenderOptions& options)
     : scene_(scene),
       index_(scene.index.get()),
       options_(options),
+      escaped_(scene.background.value_or(scene.ambient)),
       last_blockers_(scene.lights.size()) {
     if (options_.accelerate && (index_ == nullptr || !index_->covers(scene_.objects.size())))
         throw std::logic_error("Tracer: the scene's index was not built (Scene::build_index)");
@@ -142,8 +143,9 @@ Spectrum Tracer::trace(const Ray& ray, int depth, double weight, double ior,
                        const Spectrum& absorption) {
     if (depth == 0) ++stats_.primary_rays;  // secondary rays are counted where they start
     const auto found = closest_hit(ray);
-    // A ray that escapes brings back the ambient intensity.
-    if (!found) return scene_.ambient;
+    // A ray that escapes brings back the background (115), else the ambient intensity; inside
+    // glass it is not attenuated (nothing was hit, so there is no distance to decay over).
+    if (!found) return escaped_;
 
     const Object& object = *found->object;
     const Vec3 point = ray.at(found->hit.t);

@@ -1,6 +1,7 @@
 #include "rtpp/command_line.h"
 
 #include <filesystem>
+#include <optional>
 
 #include "common/exit_status.h"
 #include "common/message_text.h"
@@ -8,15 +9,20 @@
 namespace rtpp {
 
 const char* usage_text() {
-    return R"(usage: rtpp [options] [scene.rts]
+    return R"(usage: rtpp [options] [scene.rts | scene.nff]
 
-Compiles a scene in rt's readable scene language to rt's numeric scene
-format. The scene is read from the file named, or from standard input when
-it is '-' or absent:  rtpp scene.rts | rt -o scene.ppm
+Compiles a scene in rt's readable scene language, or translates one in NFF
+(the Neutral File Format of the Standard Procedural Databases), to rt's
+numeric scene format. The scene is read from the file named, or from
+standard input when it is '-' or absent:  rtpp scene.rts | rt -o scene.ppm
+A name ending in .nff is NFF:  rtpp balls.nff | rt -o balls.png
 
 options:
   -o, --output FILE   write the numeric scene to FILE ('-', the default:
                       standard output); nothing is written on an error
+      --from FORMAT   read the input as FORMAT, whatever its name: 'rts'
+                      (the readable language, the default) or 'nff'
+                      (for standard input: rtpp --from nff < balls.nff)
   -I, --include DIR   look for included files in DIR after the including
                       file's own directory (repeatable, searched in order)
   -h, --help          print this help and exit
@@ -26,9 +32,21 @@ exit status: 0 success, 1 scene or input/output error, 2 usage error
 )";
 }
 
+namespace {
+
+bool ends_with_nff(const std::string& name) {
+    if (name.size() < 4) return false;
+    std::string tail = name.substr(name.size() - 4);
+    for (char& c : tail) c = static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
+    return tail == ".nff";
+}
+
+}  // namespace
+
 CommandLine parse_command_line(const std::vector<std::string>& args) {
     CommandLine cl;
     bool have_input = false;
+    std::optional<InputFormat> from;
     rt::OptionReader options(args, "oI");
     while (options.next()) {
         const std::string& arg = options.argument();
@@ -45,6 +63,15 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
         if (arg == "-o" || arg == "--output") {
             cl.output = take_value();
             if (cl.output.empty()) throw UsageError{"-o needs a file name"};
+        } else if (arg == "--from") {
+            const std::string format = take_value();
+            if (format == "rts")
+                from = InputFormat::rts;
+            else if (format == "nff")
+                from = InputFormat::nff;
+            else
+                throw UsageError{"--from takes 'rts' or 'nff', got " +
+                                 rt::quote_token(format, rt::kShowWhole)};
         } else if (arg == "-I" || arg == "--include") {
             const std::string dir = take_value();
             if (dir.empty()) throw UsageError{"-I needs a directory"};
@@ -59,6 +86,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
             options.unknown();
         }
     }
+    cl.from = from.value_or(ends_with_nff(cl.input) ? InputFormat::nff : InputFormat::rts);
     return cl;
 }
 

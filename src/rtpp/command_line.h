@@ -10,8 +10,13 @@
 
 namespace rtpp {
 
+// What the input is written in: rtpp's readable language, or NFF (docs/nff.md).
+enum class InputFormat { rts, nff };
+
 struct CommandLine {
-    std::string input = "-";   // the readable scene; "-" is standard input
+    std::string input = "-";  // the readable scene; "-" is standard input
+    // --from, else NFF for a name ending in ".nff" (any case), else the readable language.
+    InputFormat from = InputFormat::rts;
     std::string output = "-";  // the numeric scene; "-" is standard output
     std::vector<std::string> include_dirs;
     bool help = false;

@@ -165,6 +165,17 @@ void Emitter::place_in(const ObjectValue& object, const Frame& parent) {
             start_line(object.pos);
             numbers(object);
             return;
+        case Category::background:
+            // Caught here rather than by rt, so that the message names both places in the
+            // source, not in the numbers written.
+            if (!placed.is_identity()) fail(object.pos, "a background cannot be transformed");
+            if (background_)
+                fail(object.pos, "a second background; a scene has at most one, the first is at " +
+                                     files_.place(*background_));
+            background_ = object.pos;
+            start_line(object.pos);
+            numbers(object);
+            return;
         case Category::camera:
         case Category::viewer:
             if (!placed.is_identity()) fail(object.pos, "a camera cannot be transformed");

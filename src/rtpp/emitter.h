@@ -3,6 +3,7 @@
 // rt's messages name the readable source.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "rtpp/limits.h"
@@ -50,6 +51,7 @@ class Emitter {
     long objects_ = 0;
     bool have_default_surface_ = false;
     bool have_camera_ = false;
+    std::optional<SourcePos> background_;  // where the scene's background was written from
 };
 
 }  // namespace rtpp

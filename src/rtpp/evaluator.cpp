@@ -195,7 +195,8 @@ void Evaluator::set_field(const Stmt& stmt, Target target) {
     const Kind& kind = *target->kind;
     if (is_transform(name)) {
         const Category c = kind.category;
-        if (c == Category::camera || c == Category::viewer || c == Category::ambient)
+        if (c == Category::camera || c == Category::viewer || c == Category::ambient ||
+            c == Category::background)
             fail(stmt.pos, std::string("a ") + kind.keyword + " cannot be transformed");
         return transform(stmt, *target);
     }
@@ -203,7 +204,7 @@ void Evaluator::set_field(const Stmt& stmt, Target target) {
     if (spec == nullptr) {
         std::string known = kind.field_names();
         if (kind.category != Category::camera && kind.category != Category::viewer &&
-            kind.category != Category::ambient)
+            kind.category != Category::ambient && kind.category != Category::background)
             known += std::string(known.empty() ? "" : "; ") + "translate, rotate, scale, frame";
         fail(stmt.pos, std::string("a ") + kind.keyword + " has no field '" + name + "' (" +
                            (known.empty() ? "it has no fields" : "it has: " + known) + ")");

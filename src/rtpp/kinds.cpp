@@ -104,6 +104,7 @@ std::vector<Kind> make_kinds() {
         kind("point_light", 104, Category::light,
              {vector("position"), colour("intensity"), flag("falloff", 101)}),
         kind("ambient", 103, Category::ambient, {colour("intensity")}),
+        kind("background", 115, Category::background, {colour("colour")}),
         kind("spot_light", 109, Category::light,
              {vector("position"), vector("direction"), cosine("cos_cutoff", "cutoff_angle"),
               alternative("cutoff_angle"), number("exponent", 0), colour("intensity")}),

@@ -12,7 +12,7 @@
 
 namespace rtpp {
 
-enum class Category { primitive, csg, group, surface, light, ambient, camera, viewer };
+enum class Category { primitive, csg, group, surface, light, ambient, background, camera, viewer };
 
 enum class FieldType {
     number,

@@ -3,6 +3,7 @@
 #include "common/interrupt.h"
 #include "rtpp/command_line.h"
 #include "rtpp/compiler.h"
+#include "rtpp/nff.h"
 
 int main(int argc, char** argv) {
     return rt::run_guarded({"rtpp"}, [&] {
@@ -11,6 +12,8 @@ int main(int argc, char** argv) {
         if (cl.version) return rt::print_to_stdout("rtpp", "rtpp " RT_VERSION "\n");
         rt::interrupt::install_handlers("rtpp");  // a signal removes the temporary file
         rtpp::SceneOutput output(cl);
+        if (cl.from == rtpp::InputFormat::nff)
+            return output.write(rtpp::translate_nff_file(cl.input));
         rtpp::CompileOptions options;
         for (const std::string& dir : cl.include_dirs) options.include_dirs.emplace_back(dir);
         return output.write(rtpp::compile_file(cl.input, options));

@@ -4,8 +4,12 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
 #include <limits>
 #include <numbers>
+#include <sstream>
 #include <stdexcept>
 #include <string_view>
 #include <vector>
@@ -79,6 +83,33 @@ std::string shown(std::string_view text) {
 }
 
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+// What a number is, for messages ("pp vertex 3 normal x"): the pieces, joined into text only
+// when a message needs it, so that reading a number costs no string building.
+struct Label {
+    // Implicit, so that a plain name ("s radius") is a label.
+    Label(const char* base_name, long i = 0, const char* part_name = nullptr)  // NOLINT
+        : base(base_name), index(i), part(part_name) {}
+
+    const char* base;
+    long index;                   // "vertex 3" when > 0
+    const char* part;             // "normal"
+    const char* piece = nullptr;  // a component: "x", "red"
+
+    Label with_piece(const char* p) const {
+        Label l = *this;
+        l.piece = p;
+        return l;
+    }
+    std::string text() const {
+        // Appended piece by piece: g++ 12 warns falsely (-Wrestrict) about "a" + string chains.
+        std::string t = base;
+        if (index > 0) t.append(" ").append(std::to_string(index));
+        if (part != nullptr) t.append(" ").append(part);
+        if (piece != nullptr) t.append(" ").append(piece);
+        return t;
+    }
+};
 
 // Tokens with their places, read one line at a time; '#' starts a comment anywhere. A token
 // stays valid until the token after the next one is read (one token of look-ahead).
@@ -269,11 +300,12 @@ class Translator {
         return (c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.';
     }
 
-    // The next token as a finite number; `what` names it in messages.
-    double number(const std::string& what, Token* where = nullptr) {
+    // The next token as a finite number; `label` names it in messages.
+    double number(const Label& label, Token* where = nullptr) {
         const Token t = lex_.next();
         if (where != nullptr) *where = t;
-        if (t.text.empty()) lex_.fail(t, "end of file: expected " + what);
+        const auto what = [&] { return label.text(); };
+        if (t.text.empty()) lex_.fail(t, "end of file: expected " + what());
         std::string_view text = t.text;
         // strtod's forms, as rt reads them: from_chars takes neither a leading '+' nor hex.
         if (text.size() > 1 && text[0] == '+' && text[1] != '-' && text[1] != '+')
@@ -281,35 +313,35 @@ class Translator {
         double value = 0;
         const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
         if (result.ec == std::errc::result_out_of_range)
-            lex_.fail(t, what + " is out of range: '" + shown(t.text) + "'");
+            lex_.fail(t, what() + " is out of range: '" + shown(t.text) + "'");
         if (result.ec != std::errc() || result.ptr != text.data() + text.size())
-            lex_.fail(t, "expected " + what + ", got '" + shown(t.text) + "'");
+            lex_.fail(t, "expected " + what() + ", got '" + shown(t.text) + "'");
         if (!std::isfinite(value))
-            lex_.fail(t, what + " must be finite, got '" + shown(t.text) + "'");
+            lex_.fail(t, what() + " must be finite, got '" + shown(t.text) + "'");
         return value;
     }
-    Vec3 vec(const std::string& what, Token* where = nullptr) {
-        const double x = number(what + " x", where);
-        const double y = number(what + " y");
-        const double z = number(what + " z");
+    Vec3 vec(const Label& label, Token* where = nullptr) {
+        const double x = number(label.with_piece("x"), where);
+        const double y = number(label.with_piece("y"));
+        const double z = number(label.with_piece("z"));
         return {x, y, z};
     }
-    double non_negative(const std::string& what) {
+    double non_negative(const Label& label) {
         Token t;
-        const double v = number(what, &t);
-        if (v < 0) lex_.fail(t, what + " must be >= 0, got '" + shown(t.text) + "'");
+        const double v = number(label, &t);
+        if (v < 0) lex_.fail(t, label.text() + " must be >= 0, got '" + shown(t.text) + "'");
         return v;
     }
-    Vec3 colour(const std::string& what) {
-        const double r = non_negative(what + " red");
-        const double g = non_negative(what + " green");
-        const double b = non_negative(what + " blue");
+    Vec3 colour(const Label& label) {
+        const double r = non_negative(label.with_piece("red"));
+        const double g = non_negative(label.with_piece("green"));
+        const double b = non_negative(label.with_piece("blue"));
         return {r, g, b};
     }
-    long count(const std::string& what, long min, long max, Token* where) {
-        const double v = number(what, where);
+    long count(const Label& label, long min, long max, Token* where) {
+        const double v = number(label, where);
         if (v != std::floor(v) || v < static_cast<double>(min) || v > static_cast<double>(max))
-            lex_.fail(*where, what + " must be a whole number from " + std::to_string(min) +
+            lex_.fail(*where, label.text() + " must be a whole number from " + std::to_string(min) +
                                   " to " + std::to_string(max) + ", got '" + shown(where->text) +
                                   "'");
         return static_cast<long>(v);
@@ -505,7 +537,7 @@ class Translator {
         out_.whole(static_cast<std::size_t>(n));
         for (long i = 0; i < n; ++i) {
             Token at;
-            const Vec3 v = vec("p vertex " + std::to_string(i + 1), &at);
+            const Vec3 v = vec({"p vertex", i + 1}, &at);
             out_.at(at.line);
             out_.vec(v);
         }
@@ -523,13 +555,13 @@ class Translator {
         if (!mesh_.empty() && mesh_.size() + count_n > options_.max_mesh_vertices) flush_mesh();
         if (mesh_.empty()) mesh_line_ = pp.line;
         for (long i = 0; i < n; ++i) {
-            const std::string which = "pp vertex " + std::to_string(i + 1);
+            const Label which{"pp vertex", i + 1};
             MeshVertex v;
             Token at, normal_at;
             v.position = vec(which, &at);
-            v.normal = vec(which + " normal", &normal_at);
+            v.normal = vec({"pp vertex", i + 1, "normal"}, &normal_at);
             if (!(rt::length_squared(v.normal) > 0))
-                lex_.fail(normal_at, which + " normal must not be zero");
+                lex_.fail(normal_at, which.text() + " normal must not be zero");
             v.line = at.line;
             mesh_.push_back(v);
         }
@@ -606,6 +638,21 @@ class Translator {
 void translate_nff(std::istream& in, const std::string& name, std::ostream& out,
                    const NffOptions& options) {
     Translator(in, name, out, options).run();
+}
+
+std::string translate_nff_file(const std::string& path, const NffOptions& options) {
+    std::ostringstream out;
+    if (path == "-") {
+        translate_nff(std::cin, "<stdin>", out, options);
+        return std::move(out).str();
+    }
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw CompileError(path + ": is a directory, not a scene");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw CompileError(path + ": cannot open");
+    translate_nff(in, path, out, options);
+    return std::move(out).str();
 }
 
 }  // namespace rtpp

@@ -32,6 +32,11 @@ struct NffOptions {
 void translate_nff(std::istream& in, const std::string& name, std::ostream& out,
                    const NffOptions& options = {});
 
+// Translates a file ("-" for standard input, named <stdin>) and returns the whole numeric
+// scene, so that rtpp writes nothing unless the translation completes: the output is held in
+// memory (about the size of the NFF file), the input is not.
+std::string translate_nff_file(const std::string& path, const NffOptions& options = {});
+
 // The pieces of the translation with numbers worth testing on their own. Both throw
 // std::invalid_argument on degenerate input.
 

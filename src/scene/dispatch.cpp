@@ -13,6 +13,7 @@ namespace {
 // IDs the reader handles itself rather than through a table.
 constexpr long kViewerId = 102;
 constexpr long kAmbientLightId = 103;
+constexpr long kBackgroundId = 115;
 constexpr long kDefaultSurfaceId = 105;
 constexpr long kUseDefaultSurfaceId = 106;
 
@@ -20,6 +21,7 @@ constexpr long kUseDefaultSurfaceId = 106;
 std::string describe_id(long id) {
     if (id == kViewerId) return "102 (viewer)";
     if (id == kAmbientLightId) return "103 (ambient light)";
+    if (id == kBackgroundId) return "115 (background)";
     if (id == kDefaultSurfaceId) return "105 (default surface)";
     if (id == kUseDefaultSurfaceId) return "106 (use default surface)";
     const int small = static_cast<int>(id);
@@ -166,7 +168,7 @@ void SceneReader::read_top_level_object(Scene& scene, bool& have_viewer) {
     const int small = static_cast<int>(type_id);
     const bool known = find_primitive_type(small) || find_light_type(small) ||
                        type_id == kViewerId || type_id == kAmbientLightId ||
-                       type_id == kDefaultSurfaceId;
+                       type_id == kBackgroundId || type_id == kDefaultSurfaceId;
     if (!known) {
         if (find_surface_type(small) != nullptr || type_id == kUseDefaultSurfaceId)
             fail_at_object_id(where,
@@ -199,6 +201,15 @@ void SceneReader::read_top_level_object(Scene& scene, bool& have_viewer) {
     } else if (type_id == kAmbientLightId) {
         const Vec3 intensity = vec3("ambient light intensity");
         scene.ambient += Spectrum(intensity.x, intensity.y, intensity.z);
+    } else if (type_id == kBackgroundId) {
+        if (const auto first = background_where_)
+            fail(where,
+                 "a second background (115); a scene has at most one, the first is at " +
+                     (first->file == where.file ? line_and_column(*first) : lexer_->place(*first)));
+        background_where_ = where;
+        // Validated as the ambient intensity it stands in for: any finite numbers.
+        const Vec3 colour = vec3("background colour");
+        scene.background = Spectrum(colour.x, colour.y, colour.z);
     } else if (type_id == kDefaultSurfaceId) {
         default_surface_ = surface();
     }
