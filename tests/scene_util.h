@@ -9,6 +9,7 @@
 
 #include "check.h"
 #include "rt/error.h"
+#include "rt/options.h"
 #include "rt/reader.h"
 
 namespace rt_test {
@@ -22,6 +23,14 @@ inline rt::Scene parse_scene(const std::string& text) {
 }
 
 // Scene text for an ID and its numbers, each written with full precision.
+// Options that trace every ray down to a depth where what is left is below rounding.
+inline rt::RenderOptions exhaustive() {
+    rt::RenderOptions options;
+    options.min_weight = 0;
+    options.max_depth = 60;
+    return options;
+}
+
 inline std::string object_text(int id, std::initializer_list<double> numbers) {
     std::ostringstream text;
     text.precision(17);

@@ -11,18 +11,6 @@
 using namespace rt;
 using namespace rt_test;
 
-namespace {
-
-// Options that trace every ray down to a depth where what is left is below rounding.
-RenderOptions exhaustive() {
-    RenderOptions options;
-    options.min_weight = 0;
-    options.max_depth = 60;
-    return options;
-}
-
-}  // namespace
-
 TEST(background_is_read_once_and_stored) {
     const Scene none = parse_scene(kTestViewer);
     CHECK(!none.background.has_value());

@@ -43,14 +43,6 @@ Spectrum exp_of(const Spectrum& s, double scale) {
     return {std::exp(scale * s[0]), std::exp(scale * s[1]), std::exp(scale * s[2])};
 }
 
-// Options that trace every ray down to a depth where what is left is below rounding.
-RenderOptions exhaustive() {
-    RenderOptions options;
-    options.min_weight = 0;
-    options.max_depth = 60;
-    return options;
-}
-
 }  // namespace
 
 // ---------------------------------------------------------------- the Fresnel reflectance
