@@ -109,9 +109,10 @@ TEST(a_texture_is_loaded_once_whatever_it_is_called) {
     CHECK_EQ(reader.textures_loaded(), 1u);
     // -M names each spelling (the absolute one is the first, resolved): make compares the
     // time of each, and a link can be re-pointed.
-    CHECK_EQ(reader.texture_paths().size(), 4u);
-    CHECK_EQ(reader.texture_paths().front().string(), (dir / "tex/t.ppm").string());
-    CHECK_EQ(reader.texture_paths().back().string(), (dir / "link.ppm").string());
+    CHECK_EQ(reader.input_files().size(), 4u);
+    CHECK_EQ(reader.input_files().front().path.string(), (dir / "tex/t.ppm").string());
+    CHECK_EQ(reader.input_files().back().path.string(), (dir / "link.ppm").string());
+    CHECK_EQ(std::string(reader.input_files().back().role), "the texture");
 }
 
 TEST(a_texture_that_is_not_a_regular_file_is_refused_without_blocking) {

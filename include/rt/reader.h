@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <istream>
 #include <memory>
 #include <optional>
@@ -20,8 +21,26 @@
 namespace rt {
 
 struct Image;
+struct MeshFile;
 class Lexer;
+class MeshFileCache;
 class TextureCache;
+
+// A file a scene reads besides itself, resolved against the scene's directory: what an image
+// made from the scene depends on (-M), and what its output must not replace.
+struct SceneInput {
+    std::filesystem::path path;
+    const char* role;  // how messages name it: "the texture", "the mesh file"
+};
+
+// What an object made from a mesh file (15) holds: its shape, and how many zero-area
+// triangles the file's mesh left out.
+struct FileMeshShape {
+    ShapeData shape;
+    std::size_t skipped = 0;
+};
+// Makes the shape from what the file holds; throws rt::Error("<reason>") without a place.
+using MakeFileMesh = std::function<FileMeshShape(const MeshFile&)>;
 
 // Reads one scene. The read functions of the object tables call back into it for their
 // numbers, so every error they report carries a place in the file.
@@ -58,11 +77,18 @@ class SceneReader {
     // Each file (by device and inode) is loaded once per scene however many surfaces name it,
     // by whatever path.
     std::shared_ptr<const Image> texture(std::string_view what);
-    // Every path that named a texture so far, resolved against the scene's directory, each
-    // once, in the order first named: what an image made from the scene depends on (-M).
-    const std::vector<std::filesystem::path>& texture_paths() const;
+    // Reads a mesh file path (as texture() does) and returns the shape `make` makes from the
+    // file for `mode` (ID 15). The file is read the first time any object names it, by
+    // whatever path; `make` runs the first time it is named with this mode, and later
+    // objects share that shape. What the file held and rt ignored becomes the scene's notes.
+    ShapeData mesh_file(std::string_view what, int mode, const MakeFileMesh& make);
+    // Every path that named a texture or a mesh file so far, each once, in the order first
+    // named.
+    const std::vector<SceneInput>& input_files() const { return inputs_; }
     // How many texture files were loaded: one per file, whatever it was called.
     std::size_t textures_loaded() const;
+    // How many mesh files were read: one per file, whatever it was called.
+    std::size_t mesh_files_read() const;
 
     // Nested objects: an inner primitive (ID and numbers, no surface), a surface (ID and
     // numbers, or 106 for the current default), a positioned light (ID and numbers).
@@ -83,6 +109,8 @@ class SceneReader {
     std::filesystem::path resolve(const std::string& path) const;
 
   private:
+    void add_input(const std::filesystem::path& resolved, const char* role);
+
     // Counts nesting depth while an affine or checker reads what it holds.
     class Nest {
       public:
@@ -116,6 +144,9 @@ class SceneReader {
     // Behind pointers, so that this header needs neither: one indirection per token.
     std::unique_ptr<Lexer> lexer_;
     std::unique_ptr<TextureCache> textures_;
+    std::unique_ptr<MeshFileCache> mesh_files_;
+    std::vector<SceneInput> inputs_;
+    std::vector<std::string> notes_;  // become Scene::notes
     std::filesystem::path base_dir_;
     SurfacePtr default_surface_;
     std::optional<Location> background_where_;  // where the scene's 115 is, once read
@@ -147,13 +178,12 @@ struct StageTimes {
 
 // Convenience wrappers: read a whole scene from a stream or a file ("-" for stdin) and build
 // its hierarchy on up to `threads` threads. With `times`, the seconds spent reading and
-// building are stored in it; with `textures`, the texture paths the scene loaded
-// (SceneReader::texture_paths()).
+// building are stored in it; with `inputs`, the textures and mesh files the scene read
+// (SceneReader::input_files()).
 Scene read_scene(std::istream& in, const std::string& name,
                  const std::filesystem::path& base_dir = {}, int threads = 1,
-                 StageTimes* times = nullptr,
-                 std::vector<std::filesystem::path>* textures = nullptr);
+                 StageTimes* times = nullptr, std::vector<SceneInput>* inputs = nullptr);
 Scene read_scene_file(const std::string& path, int threads = 1, StageTimes* times = nullptr,
-                      std::vector<std::filesystem::path>* textures = nullptr);
+                      std::vector<SceneInput>* inputs = nullptr);
 
 }  // namespace rt

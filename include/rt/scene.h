@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "rt/light.h"
@@ -44,6 +45,9 @@ struct Scene {
     std::shared_ptr<const ObjectIndex> index;
     // Zero-area triangles that meshes left out (they are accepted, not errors).
     std::size_t skipped_triangles = 0;
+    // What the reader accepted but ignored (a mesh file's texture coordinates, say), one
+    // sentence each naming its file, for rt to show as notes.
+    std::vector<std::string> notes;
     // Whether some surface can send both a mirror ray and a refracted ray from one hit (glass,
     // or ks and kt both above 0): only then can the rays of a pixel grow exponentially with -d.
     bool splits_rays = false;

@@ -84,6 +84,14 @@ int print_summary(const CommandLine& cl, const Scene& scene) {
     return print_to_stdout("rt", summary.view());
 }
 
+// What the reader accepted but ignored (a mesh file's texture coordinates): worth knowing,
+// not wrong.
+void show_notes(const CommandLine& cl, const Scene& scene) {
+    if (cl.quiet) return;
+    for (const std::string& note : scene.notes)
+        std::cerr << "rt: note: " << printable_message(note) << "\n";
+}
+
 void warn_about_cost(const CommandLine& cl, const Scene& scene) {
     if (cl.quiet) return;
     for (const std::string& warning : cost_warnings(scene, cl.render))
@@ -92,18 +100,18 @@ void warn_about_cost(const CommandLine& cl, const Scene& scene) {
 
 // The image file and the -M rule's file. They are checked and claimed before rendering, so a
 // bad path fails fast, and are only replaced once complete. The files the render reads (the
-// scene, its textures) are never written over.
+// scene, its textures and mesh files) are never written over.
 class ClaimedOutputs {
   public:
     ClaimedOutputs(const CommandLine& cl, const Viewer& viewer, const PixelRect& region,
-                   const std::vector<fs::path>& textures)
+                   const std::vector<SceneInput>& files)
         : encoding_(encoding_of(cl, viewer, region)),
-          inputs_(inputs_of(cl, textures)),
+          inputs_(inputs_of(cl, files)),
           image_(cl.output, inputs_) {
         if (cl.depfile.empty()) return;
         std::vector<std::string> dependencies;
         if (cl.input != "-") dependencies.push_back(cl.input);
-        for (const auto& texture : textures) dependencies.push_back(texture.string());
+        for (const SceneInput& file : files) dependencies.push_back(file.path.string());
         rule_ = make_rule(cl.output, dependencies);
         std::error_code ec;
         if (fs::weakly_canonical(cl.depfile, ec) == fs::weakly_canonical(cl.output, ec))
@@ -128,16 +136,16 @@ class ClaimedOutputs {
         if (cl.region) add_region_metadata(encoding.metadata, region, viewer.xres, viewer.yres);
         return encoding;
     }
-    // The scene first (empty for standard input), then its textures.
-    static std::vector<fs::path> inputs_of(const CommandLine& cl,
-                                           const std::vector<fs::path>& textures) {
-        std::vector<fs::path> inputs = textures;
-        inputs.insert(inputs.begin(), cl.input == "-" ? std::string() : cl.input);
+    // The scene first (empty for standard input), then its textures and mesh files.
+    static std::vector<InputFile> inputs_of(const CommandLine& cl,
+                                            const std::vector<SceneInput>& files) {
+        std::vector<InputFile> inputs{{cl.input == "-" ? std::string() : cl.input, "the scene file"}};
+        for (const SceneInput& file : files) inputs.push_back({file.path, file.role});
         return inputs;
     }
 
     ImageEncoding encoding_;
-    std::vector<fs::path> inputs_;
+    std::vector<InputFile> inputs_;
     OutputFile image_;
     std::optional<OutputFile> depfile_;
     std::string rule_;
@@ -198,12 +206,13 @@ int choose_threads(const CommandLine& cl, const JobserverAuth& auth,
 
 int run_job(const CommandLine& cl, int threads) try {
     RunStatistics statistics;
-    std::vector<fs::path> textures;
-    Scene scene = read_scene_file(cl.input, threads, &statistics.times, &textures);
+    std::vector<SceneInput> files;
+    Scene scene = read_scene_file(cl.input, threads, &statistics.times, &files);
     const PixelRect region = fit_command_line(cl, scene.viewer);
+    show_notes(cl, scene);
     if (cl.read_only) return print_summary(cl, scene);
     warn_about_cost(cl, scene);
-    ClaimedOutputs outputs(cl, scene.viewer, region, textures);
+    ClaimedOutputs outputs(cl, scene.viewer, region, files);
     RenderOptions options = cl.render;
     options.threads = threads;
     const Raster image = render_with_progress(cl, scene, options, region, statistics);

@@ -74,9 +74,9 @@ void OutputFile::fail(const std::string& why) const {
                 ": " + why);
 }
 
-OutputFile::OutputFile(std::string path, const std::vector<std::filesystem::path>& inputs,
-                       std::string what)
-    : path_(std::move(path)), what_(std::move(what)) {
+OutputFile::OutputFile(std::string path, const std::vector<InputFile>& inputs,
+                       std::string what, std::string reader)
+    : path_(std::move(path)), what_(std::move(what)), reader_(std::move(reader)) {
     if (path_ == "-") {
         struct stat st {};
         if (::fstat(STDOUT_FILENO, &st) != 0) fail("standard output is closed");
@@ -122,14 +122,14 @@ OutputFile::OutputFile(std::string path, const std::vector<std::filesystem::path
     }
 }
 
-void OutputFile::refuse_inputs(const struct stat& st,
-                               const std::vector<std::filesystem::path>& inputs) {
-    for (std::size_t i = 0; i < inputs.size(); ++i) {
-        struct stat input {};
-        if (::stat(inputs[i].c_str(), &input) != 0 || !same_file(st, input)) continue;
-        // The scene comes first (empty for standard input); the rest are its textures.
-        fail("it is " + std::string(i == 0 ? "the scene file '" : "the texture '") +
-             inputs[i].string() + "', which this render reads: choose another name");
+void OutputFile::refuse_inputs(const struct stat& st, const std::vector<InputFile>& inputs) {
+    for (const InputFile& input : inputs) {
+        struct stat input_st {};
+        if (input.path.empty() || ::stat(input.path.c_str(), &input_st) != 0 ||
+            !same_file(st, input_st))
+            continue;
+        fail("it is " + input.role + " '" + input.path.string() + "', which " + reader_ +
+             " reads: choose another name");
     }
 }
 

@@ -10,6 +10,13 @@
 
 namespace rt {
 
+// A file the program reads, which its output must not replace: `role` names it in the
+// message ("the scene file", "the texture", "the input image").
+struct InputFile {
+    std::filesystem::path path;
+    std::string role;
+};
+
 // Every check that can fail happens in the constructor, before rendering (docs/cli.md, FILES
 // AND SAFETY, says what each case does and why):
 // - "-" is standard output, written in place; refused when it is a terminal.
@@ -20,12 +27,14 @@ namespace rt {
 //   hard link are refused.
 // - A character device, FIFO or socket is opened and written in place, never replaced; a
 //   terminal is refused.
-// - A file that is one of `inputs` (the scene, its textures) is refused.
-// `what` names the data in messages ("the image"). Throws rt::Error saying why and what to do.
+// - A file that is one of `inputs` (the scene, its textures) is refused; an empty path is
+//   none (the scene read from standard input).
+// `what` names the data in messages ("the image"), `reader` the program that reads the
+// inputs ("this render", "rtimg"). Throws rt::Error saying why and what to do.
 class OutputFile {
   public:
-    explicit OutputFile(std::string path, const std::vector<std::filesystem::path>& inputs = {},
-                        std::string what = "the image");
+    explicit OutputFile(std::string path, const std::vector<InputFile>& inputs = {},
+                        std::string what = "the image", std::string reader = "this render");
     ~OutputFile();
     OutputFile(const OutputFile&) = delete;
     OutputFile& operator=(const OutputFile&) = delete;
@@ -37,11 +46,12 @@ class OutputFile {
   private:
     void open_in_place();
     void prepare_replacement(const std::string& target, const struct stat* existing);
-    void refuse_inputs(const struct stat& st, const std::vector<std::filesystem::path>& inputs);
+    void refuse_inputs(const struct stat& st, const std::vector<InputFile>& inputs);
     [[noreturn]] void fail(const std::string& why) const;
 
     std::string path_;  // as the user gave it
     std::string what_;
+    std::string reader_;
     std::string target_;     // symlinks resolved: the name the temporary file replaces
     std::string temporary_;  // empty when writing in place
     int fd_ = -1;

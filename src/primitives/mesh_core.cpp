@@ -1,5 +1,6 @@
 #include "primitives/mesh_core.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "rt/reader.h"
@@ -77,6 +78,50 @@ Vec3 face(const Core& m, const Hit& hit) {
     const Triangle& tri = m.triangle(hit);
     const Vec3 n = face_normal(m.vertex(tri, 0), m.vertex(tri, 1), m.vertex(tri, 2));
     return tri.flipped() ? -n : n;
+}
+
+namespace {
+// A shading normal closer than this (in each component) to the face normal is the face
+// normal itself, so that a triangle whose vertex normals are its face normal shades exactly
+// as the flat mesh (14) does, bit for bit.
+constexpr double kFlatTolerance = 1e-12;
+}  // namespace
+
+// The weights are computed again from the hit point rather than carried in Hit, which stays
+// as small as it is for every other primitive; the point lies in the triangle's plane up to
+// rounding, and the weights are clamped to the triangle.
+Vec3 blended_normal(const Core& m, std::span<const Vec3> normals, const Vec3& point,
+                    const Hit& hit) {
+    const Triangle& tri = m.triangle(hit);
+    const Vec3 face_n = face(m, hit);
+    const Vec3& n0 = normals[tri.vertex[0]];
+    const Vec3& n1 = normals[tri.vertex[1]];
+    const Vec3& n2 = normals[tri.vertex[2]];
+    // A corner without a normal (a file's zero normal) makes the triangle flat.
+    const Vec3 none{};
+    if (n0 == none || n1 == none || n2 == none) return face_n;
+    const Vec3& a = m.vertex(tri, 0);
+    const Vec3& b = m.vertex(tri, 1);
+    const Vec3& c = m.vertex(tri, 2);
+    // Barycentric weights as ratios of areas, on differences scaled to a largest component of
+    // about 1 so that no product overflows.
+    const double scale = std::max(max_abs_component(b - a), max_abs_component(c - a));
+    const Vec3 ab = (b - a) / scale, ac = (c - a) / scale, ap = (point - a) / scale;
+    const Vec3 n = cross(ab, ac);
+    const double area = dot(n, n);
+    double wb = dot(cross(ap, ac), n) / area;
+    double wc = dot(cross(ab, ap), n) / area;
+    double wa = 1 - wb - wc;
+    wa = std::max(wa, 0.0);
+    wb = std::max(wb, 0.0);
+    wc = std::max(wc, 0.0);
+    const Vec3 blend = wa * n0 + wb * n1 + wc * n2;
+    const double size = length(blend);
+    if (!(size > 0) || !std::isfinite(size)) return face_n;
+    Vec3 s = blend / size;
+    if (dot(s, face_n) < 0) s = -s;
+    if (max_abs_component(s - face_n) <= kFlatTolerance) return face_n;
+    return s;
 }
 
 }  // namespace rt::mesh_core

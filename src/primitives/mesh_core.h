@@ -11,6 +11,7 @@
 #include <array>
 #include <charconv>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -103,6 +104,14 @@ bool closest(const Core& core, const Ray& ray, Interval range, Hit& hit);
 bool any(const Core& core, const Ray& ray, Interval range);
 // The hit triangle's outward normal, (v1 - v0) x (v2 - v0) normalised in the written winding.
 Vec3 face(const Core& core, const Hit& hit);
+
+// The shading normal of a mesh with vertex normals (one per vertex) at a point of the hit
+// triangle: the barycentric blend of its corners' normals, normalised and turned to the face
+// normal's side (vertex normals written against the winding still shade the side a ray
+// sees). Where the blend is zero, where a corner's normal is zero, or within 1e-12 of the
+// face normal, it is the face normal.
+Vec3 blended_normal(const Core& core, std::span<const Vec3> normals, const Vec3& point,
+                    const Hit& hit);
 
 // Out of line: the part of build that does not depend on where the indices come from.
 void finish(Core& core, std::vector<Triangle>& triangles, std::vector<Bounds>& boxes, int threads);

@@ -4,11 +4,9 @@
 // is on. Shading uses the blend of the vertex normals instead: at a point with barycentric
 // weights (w0, w1, w2), normalise(w0 n0 + w1 n1 + w2 n2).
 //
-// The weights are computed again from the hit point rather than carried in Hit, which stays
-// as small as it is for every other primitive; the point lies in the triangle's plane up to
-// rounding, and the weights are clamped to the triangle.
+// The blend is the mesh core's (mesh_core::blended_normal), shared with the mesh from a file
+// (15).
 #include <algorithm>
-#include <cmath>
 #include <string>
 
 #include "primitives/mesh_core.h"
@@ -18,11 +16,6 @@
 namespace rt::smooth_mesh {
 
 namespace {
-
-// A shading normal closer than this (in each component) to the face normal is the face
-// normal itself, so that a triangle whose vertex normals are its face normal shades exactly
-// as the flat mesh (14) does, bit for bit.
-constexpr double kFlatTolerance = 1e-12;
 
 struct SmoothMesh {
     mesh_core::Core core;
@@ -78,36 +71,9 @@ Vec3 normal(const void* shape, const Vec3&, const Hit& hit) {
     return mesh_core::face(core(shape), hit);
 }
 
-// The blend of the vertex normals at the point, turned to the face normal's side (vertex
-// normals written against the winding still shade the side a ray sees). Where the blend is
-// zero, or within kFlatTolerance of the face normal, it is the face normal.
 Vec3 shading_normal(const void* shape, const Vec3& point, const Hit& hit) {
     const auto& m = *static_cast<const SmoothMesh*>(shape);
-    const mesh_core::Triangle& tri = m.core.triangle(hit);
-    const Vec3 face = mesh_core::face(m.core, hit);
-    const Vec3& a = m.core.vertex(tri, 0);
-    const Vec3& b = m.core.vertex(tri, 1);
-    const Vec3& c = m.core.vertex(tri, 2);
-    // Barycentric weights as ratios of areas, on differences scaled to a largest component of
-    // about 1 so that no product overflows.
-    const double scale = std::max(max_abs_component(b - a), max_abs_component(c - a));
-    const Vec3 ab = (b - a) / scale, ac = (c - a) / scale, ap = (point - a) / scale;
-    const Vec3 n = cross(ab, ac);
-    const double area = dot(n, n);
-    double wb = dot(cross(ap, ac), n) / area;
-    double wc = dot(cross(ab, ap), n) / area;
-    double wa = 1 - wb - wc;
-    wa = std::max(wa, 0.0);
-    wb = std::max(wb, 0.0);
-    wc = std::max(wc, 0.0);
-    const Vec3 blend = wa * m.normals[tri.vertex[0]] + wb * m.normals[tri.vertex[1]] +
-                       wc * m.normals[tri.vertex[2]];
-    const double size = length(blend);
-    if (!(size > 0) || !std::isfinite(size)) return face;
-    Vec3 s = blend / size;
-    if (dot(s, face) < 0) s = -s;
-    if (max_abs_component(s - face) <= kFlatTolerance) return face;
-    return s;
+    return mesh_core::blended_normal(m.core, m.normals, point, hit);
 }
 
 Bounds bounds(const void* shape) { return core(shape).box; }

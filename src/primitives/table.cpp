@@ -23,6 +23,7 @@ namespace polygon { extern const PrimitiveFunctions functions; }
 namespace box { extern const PrimitiveFunctions functions; }
 namespace quadric { extern const PrimitiveFunctions functions; }
 namespace mesh { extern const PrimitiveFunctions functions; }
+namespace file_mesh { extern const PrimitiveFunctions functions; }
 namespace smooth_mesh { extern const PrimitiveFunctions functions; }
 namespace csg { extern const PrimitiveFunctions union_functions; }
 namespace csg { extern const PrimitiveFunctions intersection_functions; }
@@ -46,6 +47,7 @@ constexpr std::array kPrimitiveTypes{
     PrimitiveType{12, "box", &box::functions},
     PrimitiveType{13, "quadric", &quadric::functions},
     PrimitiveType{14, "mesh", &mesh::functions},
+    PrimitiveType{15, "mesh from a file", &file_mesh::functions},
     PrimitiveType{16, "smooth mesh", &smooth_mesh::functions},
     PrimitiveType{20, "union", &csg::union_functions},
     PrimitiveType{21, "intersection", &csg::intersection_functions},

@@ -48,7 +48,9 @@ void write_samples(const std::string& path, const rt::SampleImage& image,
     if (format == rt::ImageFormat::pfm)
         throw UsageError{rt::quote_token(path, rt::kShowWhole) +
                          ": this command writes PPM or PNG, not PFM"};
-    rt::OutputFile out(path, inputs);
+    std::vector<rt::InputFile> named;
+    for (const auto& input : inputs) named.push_back({input, "the input image"});
+    rt::OutputFile out(path, named, "the image", "rtimg");
     if (format == rt::ImageFormat::png)
         out.write_bytes(rt::encode_png(image, metadata));
     else

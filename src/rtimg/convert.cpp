@@ -35,7 +35,7 @@ int convert(const std::vector<std::string>& args) {
     if (!a.has("--bits") && in.format != rt::ImageFormat::pfm) encoding.bits = in.bits();
     encoding.metadata = in.metadata;
     const rt::Raster raster = rt::to_raster(in);
-    rt::OutputFile out(a.files[1], {a.files[0]});
+    rt::OutputFile out(a.files[1], {{a.files[0], "the input image"}}, "the image", "rtimg");
     if (plain)
         out.write_bytes(rt::encode_ppm_plain(rt::quantize(raster, encoding.bits, encoding.gamma),
                                              encoding.metadata));

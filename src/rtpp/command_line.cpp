@@ -92,8 +92,9 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
 
 SceneOutput::SceneOutput(const CommandLine& cl) {
     if (cl.output == "-") return;
-    file_.emplace(cl.output, std::vector<std::filesystem::path>{cl.input == "-" ? "" : cl.input},
-                  "the output file");
+    file_.emplace(cl.output,
+                  std::vector<rt::InputFile>{{cl.input == "-" ? "" : cl.input, "the scene file"}},
+                  "the output file", "rtpp");
 }
 
 int SceneOutput::write(const std::string& text) {

@@ -221,6 +221,7 @@ Scene SceneReader::read_scene() {
     while (!lexer_->peek().at_end()) read_top_level_object(scene, have_viewer);
     if (!have_viewer) fail(lexer_->peek().where, "no viewer (102) in the scene; one is required");
     scene.skipped_triangles = skipped_triangles_;
+    scene.notes = std::move(notes_);
     scene.splits_rays = splits_rays_;
     return scene;
 }

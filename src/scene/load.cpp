@@ -15,12 +15,12 @@
 namespace rt {
 
 Scene read_scene(std::istream& in, const std::string& name, const std::filesystem::path& base_dir,
-                 int threads, StageTimes* times, std::vector<std::filesystem::path>* textures) {
+                 int threads, StageTimes* times, std::vector<SceneInput>* inputs) {
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
     SceneReader reader(in, name, base_dir, threads);
     Scene scene = reader.read_scene();
-    if (textures != nullptr) *textures = reader.texture_paths();
+    if (inputs != nullptr) *inputs = reader.input_files();
     const auto read = Clock::now();
     scene.build_index(threads);
     if (times != nullptr) {
@@ -31,7 +31,7 @@ Scene read_scene(std::istream& in, const std::string& name, const std::filesyste
 }
 
 Scene read_scene_file(const std::string& path, int threads, StageTimes* times,
-                      std::vector<std::filesystem::path>* textures) {
+                      std::vector<SceneInput>* inputs) {
     // Read through a descriptor, so that a read error is reported as one, with its reason,
     // rather than taken for the end of the scene.
     if (path == "-") {
@@ -41,7 +41,7 @@ Scene read_scene_file(const std::string& path, int threads, StageTimes* times,
                         std::strerror(errno));
         FdBuf buffer(0, "<stdin>: cannot read the scene", false);
         std::istream in(&buffer);
-        return read_scene(in, "<stdin>", std::filesystem::current_path(), threads, times, textures);
+        return read_scene(in, "<stdin>", std::filesystem::current_path(), threads, times, inputs);
     }
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
@@ -51,7 +51,7 @@ Scene read_scene_file(const std::string& path, int threads, StageTimes* times,
     FdBuf buffer(fd, path + ": cannot read the scene", true);
     std::istream in(&buffer);
     return read_scene(in, path, std::filesystem::path(path).parent_path(), threads, times,
-                      textures);
+                      inputs);
 }
 
 }  // namespace rt

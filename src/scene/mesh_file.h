@@ -10,12 +10,17 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "rt/reader.h"
 #include "rt/vec.h"
+#include "scene/input_file.h"
 
 namespace rt {
 
@@ -72,6 +77,24 @@ MeshFile read_obj(std::string_view bytes, const std::string& display_name);
 std::vector<Vec3> angle_weighted_normals(std::span<const Vec3> positions,
                                          std::span<const std::array<std::uint32_t, 3>> triangles);
 
+// The mesh files one scene has read: each file once (by device and inode), however many
+// objects name it, by whatever path; and the shapes made from it, one per mode of ID 15.
+class MeshFileCache {
+  public:
+    struct Entry {
+        MeshFile file;
+        std::array<std::optional<FileMeshShape>, 3> shapes;  // by mode
+    };
+    // The file at `resolved`, read the first time its file is named, when its notes (each
+    // prefixed with the path) are appended to `notes`. Throws rt::Error("<reason>"): the
+    // file's own place comes first in a reader's message.
+    Entry& load(const std::filesystem::path& resolved, std::vector<std::string>& notes);
+    std::size_t files() const { return entries_.size(); }
+
+  private:
+    std::map<FileId, Entry> entries_;  // by file, not by name
+};
+
 // What the two readers share: places in text and tokens as messages show them.
 namespace mesh_detail {
 
@@ -98,7 +121,7 @@ inline TextPlace text_place(std::string_view bytes, std::size_t offset) {
 
 // A token quoted for a message: at most 40 bytes, and bytes outside printable ASCII as \xNN,
 // so that a hostile file cannot put terminal escapes into a message.
-inline std::string quoted(std::string_view token) {
+inline std::string quoted_token(std::string_view token) {
     constexpr std::size_t kLongest = 40;
     static constexpr char kHex[] = "0123456789abcdef";
     std::string s = "'";

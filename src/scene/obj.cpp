@@ -15,7 +15,7 @@ namespace rt {
 namespace {
 
 using mesh_detail::parse_finite;
-using mesh_detail::quoted;
+using mesh_detail::quoted_token;
 using mesh_detail::text_place;
 
 constexpr std::uint32_t kNone = 0xffffffffU;
@@ -147,7 +147,7 @@ class ObjReader {
         if (is_blank(*q)) return "white space";
         const char* e = q;
         while (e < end_ && !is_blank(*e) && !is_line_end(*e)) ++e;
-        return quoted({q, static_cast<std::size_t>(e - q)});
+        return quoted_token({q, static_cast<std::size_t>(e - q)});
     }
 
     // After a statement: a comment may follow, then the line ends.
@@ -224,7 +224,7 @@ class ObjReader {
         for (; p_ < end_ && is_digit(*p_); ++p_)
             if (v <= kMaxMeshElements) v = v * 10 + static_cast<std::uint64_t>(*p_ - '0');
         if (v == 0 || v > count) {
-            const std::string text = quoted({start, static_cast<std::size_t>(p_ - start)});
+            const std::string text = quoted_token({start, static_cast<std::size_t>(p_ - start)});
             if (count == 0)
                 fail(start, std::string("expected ") + what + ", found " + text + ", but no " +
                                 plural + " are defined before this face");
@@ -300,7 +300,7 @@ class ObjReader {
         fail(keyword,
              "expected an OBJ statement (v, vn, vt, f, o, g, s, usemtl, mtllib, l, p, "
              "...), found " +
-                 quoted(k));
+                 quoted_token(k));
     }
 
     void note_once(bool& noted, const char* text) {

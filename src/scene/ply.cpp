@@ -19,7 +19,7 @@ namespace rt {
 namespace {
 
 using mesh_detail::parse_finite;
-using mesh_detail::quoted;
+using mesh_detail::quoted_token;
 using mesh_detail::text_place;
 
 enum class Type : std::uint8_t { kInt8, kUint8, kInt16, kUint16, kInt32, kUint32, kFloat, kDouble };
@@ -177,7 +177,7 @@ class HeaderReader {
         } else {
             std::size_t end = 0;
             while (end < b.size() && b[end] != '\n' && b[end] != '\r') ++end;
-            fail(0, "expected the line 'ply', found " + quoted(b.substr(0, end)));
+            fail(0, "expected the line 'ply', found " + quoted_token(b.substr(0, end)));
         }
         pos_ = 3 + eol_.size();
     }
@@ -193,7 +193,7 @@ class HeaderReader {
             while (i < end && bytes_[i] != ' ' && bytes_[i] != '\t') ++i;
             if (n == kMaxWords)
                 fail(word, "expected the end of the line, found " +
-                               quoted(bytes_.substr(word, i - word)));
+                               quoted_token(bytes_.substr(word, i - word)));
             words_[n++] = {bytes_.substr(word, i - word), word};
         }
     }
@@ -202,7 +202,7 @@ class HeaderReader {
         if (have < want) fail(end, std::string("expected ") + what + ", found the end of the line");
         if (have > want)
             fail(words_[want].offset,
-                 "expected the end of the line, found " + quoted(words_[want].text));
+                 "expected the end of the line, found " + quoted_token(words_[want].text));
     }
 
     Type type_word(const Word& w, const char* what) const {
@@ -211,7 +211,7 @@ class HeaderReader {
         fail(w.offset, std::string("expected ") + what +
                            " (char, uchar, short, ushort, int, uint, float, double, or int8 ... "
                            "float64), found " +
-                           quoted(w.text));
+                           quoted_token(w.text));
     }
 
     // Handles one header line; returns true at end_header.
@@ -247,10 +247,10 @@ class HeaderReader {
             } else {
                 fail(words_[1].offset,
                      "expected ascii, binary_little_endian or binary_big_endian, found " +
-                         quoted(f));
+                         quoted_token(f));
             }
             if (words_[2].text != "1.0")
-                fail(words_[2].offset, "expected the version 1.0, found " + quoted(words_[2].text));
+                fail(words_[2].offset, "expected the version 1.0, found " + quoted_token(words_[2].text));
         } else if (keyword.text == "element") {
             expect_words(n, 3, end, "an element name and a count");
             Element e;
@@ -259,7 +259,7 @@ class HeaderReader {
             const std::string_view c = words_[2].text;
             const auto r = std::from_chars(c.data(), c.data() + c.size(), e.count);
             if (c.empty() || c[0] == '-' || r.ec != std::errc() || r.ptr != c.data() + c.size())
-                fail(words_[2].offset, "expected a count (a whole number), found " + quoted(c));
+                fail(words_[2].offset, "expected a count (a whole number), found " + quoted_token(c));
             for (const Element& other : header_.elements)
                 if (other.name == e.name && (e.name == "vertex" || e.name == "face"))
                     fail(words_[1].offset, "expected one element '" + e.name + "', found a second");
@@ -279,7 +279,7 @@ class HeaderReader {
                 p.count_type = type_word(words_[2], "a count type");
                 if (!is_integer(p.count_type))
                     fail(words_[2].offset,
-                         "expected an integer count type, found " + quoted(words_[2].text));
+                         "expected an integer count type, found " + quoted_token(words_[2].text));
                 p.type = type_word(words_[3], "a value type");
                 p.type_name = std::string(words_[3].text);
                 p.name = std::string(words_[4].text);
@@ -293,7 +293,7 @@ class HeaderReader {
             for (const Property& other : e.properties)
                 if (other.name == p.name)
                     fail(words_[n - 1].offset, "expected a new property name in element '" +
-                                                   e.name + "', found " + quoted(p.name) +
+                                                   e.name + "', found " + quoted_token(p.name) +
                                                    " a second time");
             e.properties.push_back(std::move(p));
         } else if (keyword.text == "end_header") {
@@ -315,7 +315,7 @@ class HeaderReader {
             fail(keyword.offset,
                  "expected a header line (format, element, property, comment, obj_info or "
                  "end_header), found " +
-                     quoted(keyword.text));
+                     quoted_token(keyword.text));
         }
         return false;
     }
@@ -369,7 +369,7 @@ class HeaderReader {
                      "expected face property '" + p.name + "' to be a list, found a scalar");
             if (!is_integer(p.type))
                 fail(p.offset, "expected an integer type for the vertex indices, found " +
-                                   quoted(p.type_name));
+                                   quoted_token(p.type_name));
             indices = &p;
         }
         if (indices == nullptr)
@@ -580,7 +580,7 @@ class AsciiBody {
         if (is_integer(p.type)) return static_cast<double>(integer(p, p.type, w));
         double v = 0;
         if (parse_finite(w.data(), w.data() + w.size(), v) != w.data() + w.size())
-            fail("expected a finite number for property '" + p.name + "', found " + quoted(w));
+            fail("expected a finite number for property '" + p.name + "', found " + quoted_token(w));
         return v;
     }
 
@@ -643,7 +643,7 @@ class AsciiBody {
         if (b == e || (w[0] == '+' && *b == '-') || r.ec != std::errc() || r.ptr != e ||
             v < lowest(t) || v > highest(t))
             fail("expected an integer from " + std::to_string(lowest(t)) + " to " +
-                 std::to_string(highest(t)) + " for property '" + p.name + "', found " + quoted(w));
+                 std::to_string(highest(t)) + " for property '" + p.name + "', found " + quoted_token(w));
         return v;
     }
 

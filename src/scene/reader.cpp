@@ -9,6 +9,7 @@
 
 #include "rt/error.h"
 #include "scene/lexer.h"
+#include "scene/mesh_file.h"
 #include "scene/texture.h"
 
 namespace rt {
@@ -17,6 +18,7 @@ SceneReader::SceneReader(std::istream& in, std::string name, std::filesystem::pa
                          int threads)
     : lexer_(std::make_unique<Lexer>(in, std::move(name))),
       textures_(std::make_unique<TextureCache>()),
+      mesh_files_(std::make_unique<MeshFileCache>()),
       base_dir_(std::move(base_dir)),
       threads_(threads) {}
 
@@ -24,11 +26,17 @@ SceneReader::~SceneReader() = default;
 
 Location SceneReader::next_location() { return lexer_->peek().where; }
 
-const std::vector<std::filesystem::path>& SceneReader::texture_paths() const {
-    return textures_->paths();
-}
-
 std::size_t SceneReader::textures_loaded() const { return textures_->files(); }
+
+std::size_t SceneReader::mesh_files_read() const { return mesh_files_->files(); }
+
+// Every spelling is a dependency: a symbolic link among them can later be pointed at another
+// file.
+void SceneReader::add_input(const std::filesystem::path& resolved, const char* role) {
+    for (const SceneInput& known : inputs_)
+        if (known.path == resolved) return;
+    inputs_.push_back({resolved, role});
+}
 
 void SceneReader::fail(Location where, std::string_view message) const {
     lexer_->fail(where, message);
@@ -160,19 +168,44 @@ std::string SceneReader::path(std::string_view what) {
     return token.text;
 }
 
+namespace {
+// Why a file a scene names could not be used, for fail(): paths are shown whole (escaped), as
+// a user needs all of one to find the file.
+std::string cannot_read(std::string_view what, const std::string& written,
+                        const std::filesystem::path& resolved, const char* reason) {
+    std::string message = "cannot read " + std::string(what) + " " +
+                          quote_token(written, kMaxTokenLength) + ": " + reason;
+    if (resolved.string() != written)
+        message += " (looked for " + quote_token(resolved.string(), kShowWhole) + ")";
+    return message;
+}
+}  // namespace
+
 std::shared_ptr<const Image> SceneReader::texture(std::string_view what) {
     const Location where = next_location();
     const std::string written = path(what);
     const std::filesystem::path resolved = resolve(written);
+    add_input(resolved, "the texture");
     try {
         return textures_->load(resolved);
     } catch (const Error& e) {
-        // Paths are shown whole (escaped): a user needs all of one to find the file.
-        std::string message =
-            "cannot read texture " + quote_token(written, kMaxTokenLength) + ": " + e.what();
-        if (resolved.string() != written)
-            message += " (looked for " + quote_token(resolved.string(), kShowWhole) + ")";
-        fail(where, message);
+        fail(where, cannot_read("texture", written, resolved, e.what()));
+    }
+}
+
+ShapeData SceneReader::mesh_file(std::string_view what, int mode, const MakeFileMesh& make) {
+    const Location where = next_location();
+    const std::string written = path(what);
+    const std::filesystem::path resolved = resolve(written);
+    add_input(resolved, "the mesh file");
+    try {
+        MeshFileCache::Entry& entry = mesh_files_->load(resolved, notes_);
+        auto& made = entry.shapes[static_cast<std::size_t>(mode)];
+        if (!made) made = make(entry.file);
+        count_skipped_triangles(made->skipped);
+        return made->shape;
+    } catch (const Error& e) {
+        fail(where, cannot_read("mesh file", written, resolved, e.what()));
     }
 }
 

@@ -1,0 +1,113 @@
+// Mesh from a file (ID 15): a mode, a path to a PLY or OBJ file, one surface for the whole.
+// The file is found, read once and checked by the scene reader (SceneReader::mesh_file and
+// the readers in src/scene/mesh_file.h); its triangles then behave as the mesh (14) where
+// they are flat and as the smooth mesh (16) where they carry vertex normals:
+// - mode 0: the file's vertex normals where it gives them, flat where it does not;
+// - mode 1: flat always;
+// - mode 2: the file's vertex normals, or angle-weighted ones computed from the faces.
+// A triangle with a corner whose normal is zero (a file may give one; a computed normal is
+// zero where its faces cancel) is flat.
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "primitives/mesh_core.h"
+#include "rt/error.h"
+#include "rt/primitive.h"
+#include "rt/reader.h"
+#include "scene/mesh_file.h"
+
+namespace rt::file_mesh {
+
+namespace {
+
+struct FileMesh {
+    mesh_core::Core core;
+    std::vector<Vec3> normals;  // one per vertex, or none: flat
+};
+
+enum Mode : long { kFileNormals = 0, kFlat = 1, kSmooth = 2 };
+
+std::string place(const char* what, std::size_t index) {
+    return std::string(what) + " " + std::to_string(index);
+}
+
+// A file's normals are used as written, as a smooth mesh's (16) are, so that the same mesh
+// written either way shades alike; each must be zero (flat there) or have a squared length
+// that is a normal double, so that no blend of three overflows.
+void check_normals(const std::vector<Vec3>& normals) {
+    for (std::size_t i = 0; i < normals.size(); ++i) {
+        if (normals[i] == Vec3{}) continue;
+        const double squared = length_squared(normals[i]);
+        if (!(squared >= std::numeric_limits<double>::min()) || !std::isfinite(squared))
+            throw Error(place("vertex", i) +
+                        ": its normal is too short or too long (its squared length must be "
+                        "between about 1e-307 and 1e308, or zero for none)");
+    }
+}
+
+FileMeshShape make(const MeshFile& file, long mode, int threads) {
+    FileMesh mesh;
+    for (std::size_t i = 0; i < file.positions.size(); ++i)
+        if (max_abs_component(file.positions[i]) > mesh_core::kMaxCoordinate)
+            throw Error(place("vertex", i) + ": a coordinate is beyond +-" +
+                        format_number(mesh_core::kMaxCoordinate));
+    if (file.triangles.empty()) throw Error("it has no faces");
+    mesh.core.vertices = file.positions;
+    FileMeshShape made;
+    made.skipped = mesh_core::build(mesh.core, static_cast<long>(file.triangles.size()), threads,
+                                    [&](long i) { return file.triangles[static_cast<std::size_t>(i)]; });
+    if (mesh.core.triangles.empty())
+        throw Error("it has no triangle with non-zero area (all " +
+                    std::to_string(file.triangles.size()) + " are degenerate)");
+    if (mode != kFlat) {
+        if (!file.normals.empty())
+            mesh.normals = file.normals;
+        else if (mode == kSmooth)
+            mesh.normals = angle_weighted_normals(file.positions, file.triangles);
+        check_normals(mesh.normals);
+    }
+    made.shape = std::make_shared<const FileMesh>(std::move(mesh));
+    return made;
+}
+
+ShapeData read(SceneReader& reader) {
+    const long mode = reader.whole("mesh file mode (0, 1 or 2)", kFileNormals, kSmooth);
+    const int threads = reader.threads();
+    return reader.mesh_file("mesh file path", static_cast<int>(mode),
+                            [mode, threads](const MeshFile& file) { return make(file, mode, threads); });
+}
+
+const FileMesh& mesh_of(const void* shape) { return *static_cast<const FileMesh*>(shape); }
+
+bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
+    return mesh_core::closest(mesh_of(shape).core, ray, range, hit);
+}
+
+bool intersect_any(const void* shape, const Ray& ray, Interval range, Hit&) {
+    return mesh_core::any(mesh_of(shape).core, ray, range);
+}
+
+Vec3 normal(const void* shape, const Vec3&, const Hit& hit) {
+    return mesh_core::face(mesh_of(shape).core, hit);
+}
+
+Vec3 shading_normal(const void* shape, const Vec3& point, const Hit& hit) {
+    const FileMesh& m = mesh_of(shape);
+    if (m.normals.empty()) return mesh_core::face(m.core, hit);
+    return mesh_core::blended_normal(m.core, m.normals, point, hit);
+}
+
+Bounds bounds(const void* shape) { return mesh_of(shape).core.box; }
+
+}  // namespace
+
+// A shadow ray stops at the first triangle it meets.
+extern const PrimitiveFunctions functions{.read = read,
+                                          .intersect = intersect,
+                                          .normal = normal,
+                                          .bounds = bounds,
+                                          .intersect_any = intersect_any,
+                                          .shading_normal = shading_normal};
+
+}  // namespace rt::file_mesh
