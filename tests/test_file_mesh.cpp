@@ -19,6 +19,7 @@
 #include "check.h"
 #include "cli_util.h"
 #include "rt/render.h"
+#include "rtpp/compiler.h"
 #include "scene_util.h"
 
 using namespace rt;
@@ -363,4 +364,28 @@ TEST(rt_never_writes_over_a_mesh_file_and_lists_it_for_make) {
     const RunResult made = run_rt(dir, "scene.in -o out.ppm -M out.d");
     CHECK_EQ(made.status, 0);
     CHECK_CONTAINS(read_file(dir / "out.d"), "m.ply");
+}
+
+TEST(rtpp_writes_a_mesh_file_object_that_renders_as_the_file) {
+    const fs::path dir = work_dir("file_mesh_rtpp");
+    fs::create_directories(dir / "models");
+    const Mesh m = uv_sphere(6, 9);
+    write_file(dir / "models" / "ball.ply", ascii_ply(m, true));
+    // The path is resolved against the .rts file's directory and written relative to where
+    // rtpp runs; transforms put the mesh in an affine.
+    const std::string source =
+        "camera { position <0, 0, 4> look_at <0, 0, 0> fov 45 size 24, 24 }\n"
+        "point_light { position <4, 5, 6> intensity 1 }\n"
+        "let matte = surface { colour <0.9, 0.7, 0.5> ks 0.3 ke 20 kd 0.8 }\n"
+        "mesh_file { file \"ball.ply\" mode 1 surface matte scale 0.5 }\n"
+        "mesh_file { file \"ball.ply\" surface matte translate <1, 0, 0> }\n";
+    write_file(dir / "models" / "scene.rts", source);
+    const std::string compiled =
+        rtpp::compile(source, (dir / "models" / "scene.rts").string(), dir / "models");
+    CHECK_CONTAINS(compiled, "15 1 \"" + (dir / "models" / "ball.ply").string() + "\"");
+    CHECK_CONTAINS(compiled, "15 0 \"" + (dir / "models" / "ball.ply").string() + "\"");
+    const Read r = read_in(dir, compiled);
+    CHECK_EQ(r.scene.objects.size(), 2u);
+    CHECK_EQ(r.files_read, 1u);
+    CHECK_EQ(r.scene.objects[0].shape.type->id, 7);
 }

@@ -343,7 +343,7 @@ void Emitter::file(const ObjectValue& object, const char* name) {
             ? written.string()
             : (files_[at.file].path.parent_path() / written).lexically_normal().string();
     if (path.find_first_of("\"\n") != std::string::npos)
-        fail(at, "an image file name cannot contain '\"' or a newline");
+        fail(at, "a file name cannot contain '\"' or a newline");
     word("\"" + path + "\"");
 }
 

@@ -85,6 +85,8 @@ std::vector<Kind> make_kinds() {
                    n("constant"), vector("min"), vector("max")}),
         primitive("mesh", 14,
                   {list("vertex", Write::indexed, "triangle"), list("triangle", Write::none)}),
+        // A number then a path, as the contract has them: `mesh_file { file "bunny.ply" }`.
+        primitive("mesh_file", 15, {number("mode", 0), file("file")}),
         primitive("smooth_mesh", 16,
                   {list("vertex", Write::indexed_normals, "triangle"), list("normal", Write::none),
                    list("triangle", Write::none)}),
