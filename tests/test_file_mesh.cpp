@@ -20,6 +20,7 @@
 #include "cli_util.h"
 #include "rt/render.h"
 #include "rtpp/compiler.h"
+#include "scene/mesh_file.h"
 #include "scene_util.h"
 
 using namespace rt;
@@ -202,7 +203,8 @@ bool same(const Raster& a, const Raster& b) {
     return true;
 }
 
-void check_same(const Raster& a, const Raster& b) { CHECK(same(a, b)); }
+// At the caller's line, so that a failure says which comparison it was.
+#define CHECK_SAME(a, b) CHECK(same((a), (b)))
 
 }  // namespace
 
@@ -213,7 +215,7 @@ TEST(a_ply_or_obj_without_normals_renders_as_the_mesh) {
     write_file(dir / "flat.obj", obj(m, false));
     const Raster expected = render_in(dir, kSetting + inline_mesh(m, false));
     for (const char* name : {"flat.ply", "flat.obj"})
-        for (int mode : {0, 1}) check_same(render_in(dir, kSetting + from_file(mode, name)), expected);
+        for (int mode : {0, 1}) CHECK_SAME(render_in(dir, kSetting + from_file(mode, name)), expected);
 }
 
 TEST(normals_in_the_file_render_as_the_smooth_mesh_and_mode_1_ignores_them) {
@@ -225,9 +227,9 @@ TEST(normals_in_the_file_render_as_the_smooth_mesh_and_mode_1_ignores_them) {
     const Raster flat = render_in(dir, kSetting + inline_mesh(m, false));
     CHECK(!same(smooth, flat));
     for (const char* name : {"smooth.ply", "smooth.obj"}) {
-        check_same(render_in(dir, kSetting + from_file(0, name)), smooth);
-        check_same(render_in(dir, kSetting + from_file(2, name)), smooth);
-        check_same(render_in(dir, kSetting + from_file(1, name)), flat);
+        CHECK_SAME(render_in(dir, kSetting + from_file(0, name)), smooth);
+        CHECK_SAME(render_in(dir, kSetting + from_file(2, name)), smooth);
+        CHECK_SAME(render_in(dir, kSetting + from_file(1, name)), flat);
     }
 }
 
@@ -237,8 +239,8 @@ TEST(binary_ply_in_both_byte_orders_renders_its_float_values) {
     write_file(dir / "le.ply", binary_ply(m, false));
     write_file(dir / "be.ply", binary_ply(m, true));
     const Raster expected = render_in(dir, kSetting + inline_mesh(m, true));
-    check_same(render_in(dir, kSetting + from_file(0, "le.ply")), expected);
-    check_same(render_in(dir, kSetting + from_file(0, "be.ply")), expected);
+    CHECK_SAME(render_in(dir, kSetting + from_file(0, "le.ply")), expected);
+    CHECK_SAME(render_in(dir, kSetting + from_file(0, "be.ply")), expected);
 }
 
 // An octahedron's angle-weighted vertex normals point along the axes, by symmetry: mode 2
@@ -252,9 +254,53 @@ TEST(mode_2_computes_angle_weighted_normals) {
                    {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
     write_file(dir / "octahedron.obj", obj(m, false));
     const Raster smooth = render_in(dir, kSetting + inline_mesh(m, true));
-    check_same(render_in(dir, kSetting + from_file(2, "octahedron.obj")), smooth);
-    check_same(render_in(dir, kSetting + from_file(0, "octahedron.obj")),
+    CHECK_SAME(render_in(dir, kSetting + from_file(2, "octahedron.obj")), smooth);
+    CHECK_SAME(render_in(dir, kSetting + from_file(0, "octahedron.obj")),
                render_in(dir, kSetting + inline_mesh(m, false)));
+}
+
+Mesh octahedron(const Vec3& centre, double radius) {
+    Mesh m;
+    for (const Vec3& axis : {Vec3{1, 0, 0}, Vec3{-1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, -1, 0},
+                             Vec3{0, 0, 1}, Vec3{0, 0, -1}}) {
+        m.positions.push_back(centre + radius * axis);
+        m.normals.push_back(axis);
+    }
+    m.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                   {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+    return m;
+}
+
+// One OBJ, two octahedra: the left with a normal at every corner, the right with none.
+// Mode 0 shades the left smooth and the right flat; mode 2 computes the right's normals.
+TEST(an_obj_with_normals_on_some_faces_is_smooth_where_it_has_them) {
+    const fs::path dir = work_dir("file_mesh_mixed");
+    const Mesh left = octahedron({-0.6, 0, 0}, 0.5), right = octahedron({0.6, 0, 0}, 0.5);
+    std::ostringstream file;
+    file.precision(17);
+    for (const Mesh* m : {&left, &right})
+        for (const Vec3& p : m->positions) file << "v " << p << '\n';
+    for (const Vec3& n : left.normals) file << "vn " << n << '\n';
+    for (const auto& t : left.triangles)
+        file << "f " << t[0] + 1 << "//" << t[0] + 1 << ' ' << t[1] + 1 << "//" << t[1] + 1 << ' '
+             << t[2] + 1 << "//" << t[2] + 1 << '\n';
+    for (const auto& t : right.triangles)
+        file << "f " << t[0] + 7 << ' ' << t[1] + 7 << ' ' << t[2] + 7 << '\n';
+    write_file(dir / "mixed.obj", file.str());
+    CHECK_SAME(render_in(dir, kSetting + from_file(0, "mixed.obj")),
+               render_in(dir, kSetting + inline_mesh(left, true) + inline_mesh(right, false)));
+    // The computed normals are the axes, to rounding (the octahedron's symmetry), and the
+    // image is the smooth mesh with exactly those.
+    Mesh computed = right;
+    std::vector<std::array<std::uint32_t, 3>> triangles;
+    for (const auto& t : right.triangles)
+        triangles.push_back({static_cast<std::uint32_t>(t[0]), static_cast<std::uint32_t>(t[1]),
+                             static_cast<std::uint32_t>(t[2])});
+    computed.normals = angle_weighted_normals(right.positions, triangles);
+    for (std::size_t i = 0; i < computed.normals.size(); ++i)
+        CHECK(near(computed.normals[i], right.normals[i], 1e-15));
+    CHECK_SAME(render_in(dir, kSetting + from_file(2, "mixed.obj")),
+               render_in(dir, kSetting + inline_mesh(left, true) + inline_mesh(computed, true)));
 }
 
 TEST(polygons_are_fan_triangulated) {
@@ -267,8 +313,8 @@ TEST(polygons_are_fan_triangulated) {
     const std::string fan = std::string("14 5 3  -1 -1 0  1 -1 0  1 1 0  -1 1 0  0 1.5 0  ") +
                             "0 1 2  0 2 4  0 4 3 " + kSurface;
     const Raster expected = render_in(dir, kSetting + fan);
-    check_same(render_in(dir, kSetting + from_file(0, "quad.obj")), expected);
-    check_same(render_in(dir, kSetting + from_file(0, "quad.ply")), expected);
+    CHECK_SAME(render_in(dir, kSetting + from_file(0, "quad.obj")), expected);
+    CHECK_SAME(render_in(dir, kSetting + from_file(0, "quad.ply")), expected);
 }
 
 TEST(the_file_is_read_once_and_every_spelling_is_an_input) {
@@ -348,7 +394,7 @@ TEST(zero_normals_in_a_file_shade_their_triangles_flat) {
     Mesh m = uv_sphere(5, 7);
     for (Vec3& n : m.normals) n = {};
     write_file(dir / "zero.ply", ascii_ply(m, true));
-    check_same(render_in(dir, kSetting + from_file(0, "zero.ply")),
+    CHECK_SAME(render_in(dir, kSetting + from_file(0, "zero.ply")),
                render_in(dir, kSetting + inline_mesh(m, false)));
 }
 

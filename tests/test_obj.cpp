@@ -86,15 +86,20 @@ TEST(corner_normals_become_vertex_normals) {
     CHECK(m.notes.empty());
 }
 
-TEST(normals_on_only_some_corners_give_a_flat_mesh) {
+TEST(corners_without_normals_get_the_zero_normal) {
     const MeshFile m = obj(kSquare + "vn 0 0 1\nf 1//1 2//1 3//1\nf 1 3 4\n");
-    CHECK(m.triangles == (Triangles{{0, 1, 2}, {0, 2, 3}}));
-    CHECK(m.normals.empty());
-    CHECK_EQ(m.positions.size(), 4u);
-    CHECK(m.notes ==
-          Notes{"OBJ normals ignored: only some face corners have one, so the mesh is flat"});
-    // Within one face too.
-    CHECK(obj(kSquare + "vn 0 0 1\nf 1//1 2 3\n").normals.empty());
+    // Positions 0 and 2 are named with a normal first, then without: each gets a copy whose
+    // normal is zero, so the second triangle has no vertex normals at all.
+    CHECK(m.positions ==
+          (Points{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 0}, {1, 1, 0}}));
+    CHECK(m.normals == (Points{{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}}));
+    CHECK(m.triangles == (Triangles{{0, 1, 2}, {4, 5, 3}}));
+    CHECK(m.notes == Notes{"OBJ face corners without a normal: their triangles have no vertex "
+                           "normals (flat in mode 0, computed in mode 2)"});
+    // Within one face too: the corners without one share the zero normal.
+    const MeshFile one = obj(kSquare + "vn 0 0 1\nf 1//1 2 3\n");
+    CHECK(one.normals == (Points{{0, 0, 1}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}}));
+    CHECK(one.triangles == (Triangles{{0, 1, 2}}));
 }
 
 TEST(numbers_as_written) {

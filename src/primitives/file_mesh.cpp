@@ -4,9 +4,11 @@
 // they are flat and as the smooth mesh (16) where they carry vertex normals:
 // - mode 0: the file's vertex normals where it gives them, flat where it does not;
 // - mode 1: flat always;
-// - mode 2: the file's vertex normals, or angle-weighted ones computed from the faces.
-// A triangle with a corner whose normal is zero (a file may give one; a computed normal is
-// zero where its faces cancel) is flat.
+// - mode 2: the file's vertex normals, and angle-weighted ones computed from the faces for
+//   the vertices it gives none (or a zero one).
+// A triangle with a corner whose normal is zero (a PLY may give one, an OBJ corner without a
+// normal has one; a computed normal is zero where its faces cancel) is flat.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -61,11 +63,22 @@ FileMeshShape make(const MeshFile& file, long mode, int threads) {
         throw Error("it has no triangle with non-zero area (all " +
                     std::to_string(file.triangles.size()) + " are degenerate)");
     if (mode != kFlat) {
-        if (!file.normals.empty())
-            mesh.normals = file.normals;
-        else if (mode == kSmooth)
-            mesh.normals = angle_weighted_normals(file.positions, file.triangles);
+        mesh.normals = file.normals;
         check_normals(mesh.normals);
+        // Mode 2 computes the normals the file does not give: all of them, or those of the
+        // vertices whose normal it gives as zero (OBJ corners without one).
+        if (mode == kSmooth) {
+            const bool some_missing =
+                mesh.normals.empty() ||
+                std::find(mesh.normals.begin(), mesh.normals.end(), Vec3{}) != mesh.normals.end();
+            if (some_missing) {
+                const std::vector<Vec3> computed =
+                    angle_weighted_normals(file.positions, file.triangles);
+                if (mesh.normals.empty()) mesh.normals.assign(computed.size(), Vec3{});
+                for (std::size_t i = 0; i < computed.size(); ++i)
+                    if (mesh.normals[i] == Vec3{}) mesh.normals[i] = computed[i];
+            }
+        }
     }
     made.shape = std::make_shared<const FileMesh>(std::move(mesh));
     return made;

@@ -62,7 +62,8 @@ MeshFile read_ply(std::string_view bytes, const std::string& display_name);
 // Wavefront OBJ: v, vn and f (v, v/vt, v//vn, v/vt/vn; negative indices count back from the
 // last vertex defined so far; an index must name a vertex or normal defined before its face).
 // A position whose corners carry different normals becomes one vertex per distinct normal;
-// the mesh has normals only when every face corner has one (else they are ignored, noted).
+// when some face corners have a normal, the mesh has normals, and a corner without one has
+// the zero normal (noted when only some corners have one).
 // A face needs at least 3 corners. "#" starts a comment anywhere; a backslash at the end of a
 // line continues it; a leading byte-order mark is skipped. Other statements of the OBJ
 // format (vt, o, g, s, usemtl, mtllib, l, p, and free-form geometry) are ignored and noted

@@ -318,10 +318,11 @@ class ObjReader {
         const std::uint64_t corners = 3 * static_cast<std::uint64_t>(triangles_.size());
         if (with_normals > 0 && with_normals < corners)
             mesh.notes.emplace_back(
-                "OBJ normals ignored: only some face corners have one, so the mesh is flat");
+                "OBJ face corners without a normal: their triangles have no vertex normals "
+                "(flat in mode 0, computed in mode 2)");
         mesh.positions = std::move(positions_);
         mesh.triangles.reserve(triangles_.size());
-        if (with_normals == 0 || with_normals < corners) {
+        if (with_normals == 0) {
             for (const auto& t : triangles_)
                 mesh.triangles.push_back({t[0].position, t[1].position, t[2].position});
             return mesh;
@@ -330,25 +331,30 @@ class ObjReader {
         return mesh;
     }
 
+    // A corner without a normal has the zero normal, which marks its vertex as having none.
+    Vec3 normal_of(const Corner& c) const { return c.normal == kNone ? Vec3{} : normals_[c.normal]; }
+
     // A position takes the normal of the first corner that names it; a corner with another
-    // normal (by value: files often repeat one normal under several indices) gets a copy of
-    // the position, one per distinct (position, normal index) pair.
+    // normal (by value: files often repeat one normal under several indices), or with none
+    // where the first had one, gets a copy of the position, one per distinct (position,
+    // normal index) pair.
     void split_by_normals(MeshFile& mesh) {
         const std::size_t count = mesh.positions.size();
         mesh.normals.assign(count, Vec3{});
-        std::vector<std::uint32_t> first(count, kNone);
+        constexpr std::uint32_t kUnused = kNone - 1;  // no corner has named the position yet
+        std::vector<std::uint32_t> first(count, kUnused);
         std::unordered_map<std::uint64_t, std::uint32_t> copies;
         for (const auto& t : triangles_) {
             std::array<std::uint32_t, 3> out{};
             for (int k = 0; k < 3; ++k) {
                 const Corner c = t[static_cast<std::size_t>(k)];
                 std::uint32_t& id = out[static_cast<std::size_t>(k)];
-                if (first[c.position] == kNone) {
+                if (first[c.position] == kUnused) {
                     first[c.position] = c.normal;
-                    mesh.normals[c.position] = normals_[c.normal];
+                    mesh.normals[c.position] = normal_of(c);
                     id = c.position;
                 } else if (first[c.position] == c.normal ||
-                           mesh.normals[c.position] == normals_[c.normal]) {
+                           mesh.normals[c.position] == normal_of(c)) {
                     id = c.position;
                 } else {
                     const std::uint64_t key = std::uint64_t{c.position} << 32 | c.normal;
@@ -362,7 +368,7 @@ class ObjReader {
                                         "its own vertex, found more");
                         const Vec3 position = mesh.positions[c.position];
                         mesh.positions.push_back(position);
-                        mesh.normals.push_back(normals_[c.normal]);
+                        mesh.normals.push_back(normal_of(c));
                     }
                     id = it->second;
                 }
