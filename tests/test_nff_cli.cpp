@@ -1,8 +1,15 @@
 // rtpp reading NFF from its command line: by the .nff extension, or --from nff for standard
 // input and any name; the result rendered by rt, checked pixel by pixel.
+#include <fcntl.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
+#include <iostream>
 #include <string>
+#include <vector>
 
 #include "check.h"
 #include "cli_util.h"
@@ -110,4 +117,58 @@ TEST(nff_errors_name_the_nff_file_and_usage_errors_exit_2) {
     r = run_rtpp(dir, "missing.nff");
     CHECK_EQ(r.status, 1);
     CHECK_CONTAINS(r.err, "missing.nff: cannot open");
+}
+
+namespace {
+
+// Runs rtpp with `args` in `dir`, its output to /dev/null, and returns its peak resident
+// memory in KiB (-1 when it did not exit with 0).
+long rtpp_peak_kib(const fs::path& dir, const std::vector<std::string>& args) {
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        if (::chdir(dir.c_str()) != 0) ::_exit(127);
+        const int null = ::open("/dev/null", O_RDWR);
+        ::dup2(null, 1);
+        ::dup2(null, 2);
+        std::vector<char*> argv{const_cast<char*>(RTPP_BINARY)};
+        for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+        argv.push_back(nullptr);
+        ::execv(RTPP_BINARY, argv.data());
+        ::_exit(127);
+    }
+    int status = 0;
+    rusage usage{};
+    if (::wait4(pid, &status, 0, &usage) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+        return -1;
+    return usage.ru_maxrss;
+}
+
+}  // namespace
+
+// 600,000 spheres (about 23 MB of NFF, 17 MB of scene): the translation goes to a spool that
+// keeps 8 MB in memory and the rest in a temporary file, so rtpp's memory does not grow with
+// the file, to standard output or to a file alike; and the spooled result is the whole scene.
+TEST(a_large_nff_file_streams_through_in_bounded_memory) {
+    const fs::path dir = work_dir("nff_cli_large");
+    std::string nff = "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\nresolution 9 9\n"
+                      "l 0 0 10\nf 1 0 0 1 0 0 0 1\n";
+    for (int i = 0; i < 600000; ++i)
+        nff += "s " + std::to_string(i % 631) + ".25 " + std::to_string(i / 631) + ".5 -7 0.125\n";
+    write_file(dir / "big.nff", nff);
+    const long to_stdout = rtpp_peak_kib(dir, {"big.nff"});
+    const long to_file = rtpp_peak_kib(dir, {"big.nff", "-o", "big.in"});
+    CHECK(to_stdout > 0);
+    CHECK(to_file > 0);
+    std::cout << "  peak: " << to_stdout / 1024 << " MiB to standard output, " << to_file / 1024
+              << " MiB to a file\n";
+    // The spool's 8 MB, buffers and the program itself; holding the scene would be 17 MB more.
+    CHECK(to_stdout < 16 * 1024);
+    CHECK(to_file < 16 * 1024);
+    const std::string scene = read_file(dir / "big.in");
+    CHECK(scene.size() > 15u << 20);
+    CHECK_CONTAINS(scene.substr(scene.size() - 200), "\n1 0.125 549.25 950.5 -7 106\n");
+    std::size_t spheres = 0;
+    for (std::size_t at = scene.find("\n1 "); at != std::string::npos; at = scene.find("\n1 ", at + 1))
+        ++spheres;
+    CHECK_EQ(spheres, 600000u);
 }

@@ -232,14 +232,25 @@ OutputFile::~OutputFile() {
 }
 
 void OutputFile::write_bytes(std::string_view bytes) {
+    append(bytes);
+    commit();
+}
+
+void OutputFile::append(std::string_view bytes) {
     if (committed_ || fd_ < 0) fail("it was written already");
-    if (truncate_ && ::ftruncate(fd_, 0) != 0) fail(std::strerror(errno));
+    if (!started_ && truncate_ && ::ftruncate(fd_, 0) != 0) fail(std::strerror(errno));
+    started_ = true;
     while (!bytes.empty()) {
         const ssize_t n = ::write(fd_, bytes.data(), bytes.size());
         if (n < 0 && errno == EINTR) continue;
         if (n < 0) fail(std::strerror(errno));
         bytes.remove_prefix(static_cast<std::size_t>(n));
     }
+}
+
+void OutputFile::commit() {
+    if (committed_ || fd_ < 0) fail("it was written already");
+    if (!started_ && truncate_ && ::ftruncate(fd_, 0) != 0) fail(std::strerror(errno));
     if (!temporary_.empty()) {
         // On disk before the rename, so that a crash leaves the old file or the new, whole.
         if (::fsync(fd_) != 0) fail(std::strerror(errno));

@@ -42,6 +42,11 @@ class OutputFile {
     // Writes the whole file and commits it: renames the temporary file over the target, or
     // finishes writing in place. Call it once.
     void write_bytes(std::string_view bytes);
+    // Or in pieces: append them in order, then commit once. A regular file is still replaced
+    // only by commit(); what is written in place (a FIFO, standard output) goes out as it
+    // comes.
+    void append(std::string_view bytes);
+    void commit();
 
   private:
     void open_in_place();
@@ -59,6 +64,7 @@ class OutputFile {
     bool truncate_ = false;  // a regular file written in place (through /proc/self/fd)
     int cleanup_slot_ = -1;  // the temporary file's registration with rt::interrupt
     bool committed_ = false;
+    bool started_ = false;  // something was appended
 };
 
 }  // namespace rt

@@ -103,4 +103,17 @@ int SceneOutput::write(const std::string& text) {
     return rt::kExitOk;
 }
 
+int SceneOutput::write(rt::Spool& text) {
+    if (!file_) {
+        int status = rt::kExitOk;
+        text.each_piece([&](std::string_view piece) {
+            if (status == rt::kExitOk) status = rt::print_to_stdout("rtpp", piece);
+        });
+        return status;
+    }
+    text.each_piece([&](std::string_view piece) { file_->append(piece); });
+    file_->commit();
+    return rt::kExitOk;
+}
+
 }  // namespace rtpp

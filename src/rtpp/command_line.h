@@ -7,6 +7,7 @@
 
 #include "common/option_reader.h"
 #include "common/output_file.h"
+#include "common/spool.h"
 
 namespace rtpp {
 
@@ -39,6 +40,7 @@ class SceneOutput {
 
     // Writes the whole scene; returns the exit status.
     int write(const std::string& text);
+    int write(rt::Spool& text);
 
   private:
     std::optional<rt::OutputFile> file_;

@@ -640,18 +640,19 @@ void translate_nff(std::istream& in, const std::string& name, std::ostream& out,
     Translator(in, name, out, options).run();
 }
 
-std::string translate_nff_file(const std::string& path, const NffOptions& options) {
-    std::ostringstream out;
-    if (path == "-") {
-        translate_nff(std::cin, "<stdin>", out, options);
-        return std::move(out).str();
-    }
+void translate_nff_file(const std::string& path, std::ostream& out, const NffOptions& options) {
+    if (path == "-") return translate_nff(std::cin, "<stdin>", out, options);
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
         throw CompileError(path + ": is a directory, not a scene");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw CompileError(path + ": cannot open");
     translate_nff(in, path, out, options);
+}
+
+std::string translate_nff_file(const std::string& path, const NffOptions& options) {
+    std::ostringstream out;
+    translate_nff_file(path, out, options);
     return std::move(out).str();
 }
 

@@ -32,9 +32,10 @@ struct NffOptions {
 void translate_nff(std::istream& in, const std::string& name, std::ostream& out,
                    const NffOptions& options = {});
 
-// Translates a file ("-" for standard input, named <stdin>) and returns the whole numeric
-// scene, so that rtpp writes nothing unless the translation completes: the output is held in
-// memory (about the size of the NFF file), the input is not.
+// Translates a file ("-" for standard input, named <stdin>) to `out` (rtpp gives it a
+// rt::Spool, so that nothing is written unless the translation completes, in bounded memory
+// however large the file), or returns the whole numeric scene.
+void translate_nff_file(const std::string& path, std::ostream& out, const NffOptions& options = {});
 std::string translate_nff_file(const std::string& path, const NffOptions& options = {});
 
 // The pieces of the translation with numbers worth testing on their own. Both throw
