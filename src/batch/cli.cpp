@@ -143,7 +143,7 @@ options:
       --no-metadata   do not record rt's version, the scene and the options in
                       the image (a PPM comment or a PNG text chunk)
   -M, --depend FILE   also write a make rule to FILE, once the image is written:
-                      the image depends on the scene and its textures
+                      the image depends on the scene, its textures and mesh files
   -d, --depth N       maximum recursion depth for reflected and refracted rays
                       (default 7; 0 traces no secondary rays)
   -w, --weight W      do not trace rays whose weight is below W (default 0.01)
