@@ -74,7 +74,9 @@ double to_float(double x) {
 
 // The mesh with every coordinate rounded to float, as a binary float PLY stores it.
 Mesh as_floats(Mesh m) {
-    const auto round = [](const Vec3& v) { return Vec3{to_float(v.x), to_float(v.y), to_float(v.z)}; };
+    const auto round = [](const Vec3& v) {
+        return Vec3{to_float(v.x), to_float(v.y), to_float(v.z)};
+    };
     for (Vec3& v : m.positions) v = round(v);
     for (Vec3& v : m.normals) v = round(v);
     return m;
@@ -125,7 +127,8 @@ void put(std::string& out, T value, bool big) {
 
 // Float coordinates and normals, ushort counts, uint indices, in either byte order.
 std::string binary_ply(const Mesh& m, bool big) {
-    std::string out = "ply\nformat " + std::string(big ? "binary_big_endian" : "binary_little_endian") +
+    std::string out = "ply\nformat " +
+                      std::string(big ? "binary_big_endian" : "binary_little_endian") +
                       " 1.0\nelement vertex " + std::to_string(m.positions.size()) +
                       "\nproperty float x\nproperty float y\nproperty float z\n"
                       "property float nx\nproperty float ny\nproperty float nz\n"
@@ -215,7 +218,8 @@ TEST(a_ply_or_obj_without_normals_renders_as_the_mesh) {
     write_file(dir / "flat.obj", obj(m, false));
     const Raster expected = render_in(dir, kSetting + inline_mesh(m, false));
     for (const char* name : {"flat.ply", "flat.obj"})
-        for (int mode : {0, 1}) CHECK_SAME(render_in(dir, kSetting + from_file(mode, name)), expected);
+        for (int mode : {0, 1})
+            CHECK_SAME(render_in(dir, kSetting + from_file(mode, name)), expected);
 }
 
 TEST(normals_in_the_file_render_as_the_smooth_mesh_and_mode_1_ignores_them) {
@@ -305,7 +309,8 @@ TEST(an_obj_with_normals_on_some_faces_is_smooth_where_it_has_them) {
 
 TEST(polygons_are_fan_triangulated) {
     const fs::path dir = work_dir("file_mesh_polygons");
-    write_file(dir / "quad.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nv 0 1.5 0\nf 1 2 3 5 4\n");
+    write_file(dir / "quad.obj",
+               "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nv 0 1.5 0\nf 1 2 3 5 4\n");
     write_file(dir / "quad.ply",
                "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n"
                "property float z\nelement face 1\nproperty list uchar int vertex_index\n"
@@ -361,8 +366,9 @@ TEST(what_is_not_a_regular_file_is_refused_without_blocking) {
     CHECK_EQ(::mkfifo((dir / "fifo.ply").c_str(), 0600), 0);
     fs::create_directories(dir / "dir.ply");
     ::alarm(60);  // an open that blocks would otherwise hang the test for ever
-    CHECK_CONTAINS(error_in(dir, kSetting + from_file(0, "fifo.ply")),
-                   "scene.in:4:6: cannot read mesh file 'fifo.ply': it is not a regular file (a FIFO)");
+    CHECK_CONTAINS(
+        error_in(dir, kSetting + from_file(0, "fifo.ply")),
+        "scene.in:4:6: cannot read mesh file 'fifo.ply': it is not a regular file (a FIFO)");
     CHECK_CONTAINS(error_in(dir, kSetting + from_file(0, "dir.ply")), "it is a directory");
     CHECK_CONTAINS(error_in(dir, kSetting + from_file(0, "none.obj")),
                    "cannot read mesh file 'none.obj': cannot open it: No such file or directory");
@@ -386,7 +392,8 @@ TEST(errors_name_the_scene_place_and_the_file_place) {
                    "no triangle with non-zero area (all 1 are degenerate)");
     CHECK_CONTAINS(error_in(dir, kSetting + from_file(0, "empty.obj")), "it has no faces");
     CHECK_CONTAINS(error_in(dir, kSetting + from_file(3, "bad.obj")), "scene.in:4:4: ");
-    CHECK_CONTAINS(error_in(dir, std::string(kSetting) + "15 0\n"), "scene.in:4:5: unexpected end of file: expected mesh file path");
+    CHECK_CONTAINS(error_in(dir, std::string(kSetting) + "15 0\n"),
+                   "scene.in:4:5: unexpected end of file: expected mesh file path");
 }
 
 TEST(zero_normals_in_a_file_shade_their_triangles_flat) {

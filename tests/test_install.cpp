@@ -1,10 +1,12 @@
 // Installed like a Unix tool: cmake --install puts the programs, the man page, the docs and
 // the example scenes where they belong, and the man page describes every option and renders
 // without warnings.
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "check.h"
 #include "cli_util.h"
@@ -19,10 +21,10 @@ TEST(cmake_install_puts_everything_in_place) {
                         prefix.string(), "' >'", log.string(), "' 2>&1")),
              0);
     for (const char* file :
-         {"bin/rt", "bin/rtimg", "share/man/man1/rt.1", "share/man/man1/rtimg.1",
-          "share/doc/rt/rtimg.md", "share/doc/rt/README.md", "share/doc/rt/format.md",
-          "share/doc/rt/cli.md", "share/doc/rt/architecture.md", "share/doc/rt/scenes/showcase.in",
-          "share/doc/rt/scenes/textures/letter-f.ppm"}) {
+         {"bin/rt", "bin/rtimg", "share/man/man1/rt.1", "share/man/man1/rtpp.1",
+          "share/man/man1/rtimg.1", "share/doc/rt/rtimg.md", "share/doc/rt/README.md",
+          "share/doc/rt/format.md", "share/doc/rt/cli.md", "share/doc/rt/architecture.md",
+          "share/doc/rt/scenes/showcase.in", "share/doc/rt/scenes/textures/letter-f.ppm"}) {
         if (!fs::exists(prefix / file))
             record_failure(__FILE__, __LINE__, join(file, " was not installed"));
     }
@@ -73,13 +75,30 @@ TEST(rtimgs_man_page_describes_every_option_of_its_help) {
     check_page_describes_help(RTIMG_BINARY, "rtimg.1", 7);
 }
 
+TEST(rtpps_man_page_describes_every_option_of_its_help) {
+    check_page_describes_help(RTPP_BINARY, "rtpp.1", 4);
+}
+
+// Each page names the other two programs' pages.
+TEST(the_man_pages_refer_to_each_other) {
+    const std::vector<std::string> programs{"rt", "rtpp", "rtimg"};
+    for (const std::string& program : programs) {
+        const std::string page = read_file(fs::path(RT_SOURCE_DIR) / "docs" / (program + ".1"));
+        const std::string see_also = page.substr(std::min(page.find(".SH SEE ALSO"), page.size()));
+        for (const std::string& other : programs)
+            if (other != program && see_also.find(".BR " + other + " (1)") == std::string::npos)
+                record_failure(__FILE__, __LINE__,
+                               join(program, ".1's SEE ALSO does not name ", other, "(1)"));
+    }
+}
+
 TEST(the_man_page_renders_without_warnings_where_groff_is_installed) {
     if (!on_path("groff")) {
         std::cout << "groff is not installed: not checked\n";
         return;
     }
     const fs::path log = work_dir("groff") / "groff.log";
-    for (const char* name : {"rt.1", "rtimg.1"}) {
+    for (const char* name : {"rt.1", "rtpp.1", "rtimg.1"}) {
         const std::string page = (fs::path(RT_SOURCE_DIR) / "docs" / name).string();
         for (const char* device : {"ascii", "utf8"}) {
             CHECK_EQ(

@@ -150,8 +150,9 @@ long rtpp_peak_kib(const fs::path& dir, const std::vector<std::string>& args) {
 // the file, to standard output or to a file alike; and the spooled result is the whole scene.
 TEST(a_large_nff_file_streams_through_in_bounded_memory) {
     const fs::path dir = work_dir("nff_cli_large");
-    std::string nff = "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\nresolution 9 9\n"
-                      "l 0 0 10\nf 1 0 0 1 0 0 0 1\n";
+    std::string nff =
+        "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\nresolution 9 9\n"
+        "l 0 0 10\nf 1 0 0 1 0 0 0 1\n";
     for (int i = 0; i < 600000; ++i)
         nff += "s " + std::to_string(i % 631) + ".25 " + std::to_string(i / 631) + ".5 -7 0.125\n";
     write_file(dir / "big.nff", nff);
@@ -168,7 +169,8 @@ TEST(a_large_nff_file_streams_through_in_bounded_memory) {
     CHECK(scene.size() > 15u << 20);
     CHECK_CONTAINS(scene.substr(scene.size() - 200), "\n1 0.125 549.25 950.5 -7 106\n");
     std::size_t spheres = 0;
-    for (std::size_t at = scene.find("\n1 "); at != std::string::npos; at = scene.find("\n1 ", at + 1))
+    for (std::size_t at = scene.find("\n1 "); at != std::string::npos;
+         at = scene.find("\n1 ", at + 1))
         ++spheres;
     CHECK_EQ(spheres, 600000u);
 }

@@ -29,7 +29,8 @@ std::string read_back(rt::Spool& spool) {
 // Text that is different everywhere, so that a piece out of order or repeated shows.
 std::string numbered_lines(int count) {
     std::string text;
-    for (int i = 0; i < count; ++i) text += std::to_string(i) + " spheres and " + std::to_string(i * 7) + "\n";
+    for (int i = 0; i < count; ++i)
+        text += std::to_string(i) + " spheres and " + std::to_string(i * 7) + "\n";
     return text;
 }
 
@@ -46,7 +47,8 @@ TEST(text_within_the_limit_stays_in_memory) {
 }
 
 TEST(text_beyond_the_limit_spills_to_a_file_and_comes_back_whole) {
-    for (std::size_t limit : {std::size_t{0}, std::size_t{1}, std::size_t{4096}, std::size_t{65536}}) {
+    for (std::size_t limit :
+         {std::size_t{0}, std::size_t{1}, std::size_t{4096}, std::size_t{65536}}) {
         rt::Spool spool(limit);
         std::ostream out(&spool);
         const std::string text = numbered_lines(200000);  // about 5 MB: several read pieces

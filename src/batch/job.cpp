@@ -139,7 +139,8 @@ class ClaimedOutputs {
     // The scene first (empty for standard input), then its textures and mesh files.
     static std::vector<InputFile> inputs_of(const CommandLine& cl,
                                             const std::vector<SceneInput>& files) {
-        std::vector<InputFile> inputs{{cl.input == "-" ? std::string() : cl.input, "the scene file"}};
+        std::vector<InputFile> inputs{
+            {cl.input == "-" ? std::string() : cl.input, "the scene file"}};
         for (const SceneInput& file : files) inputs.push_back({file.path, file.role});
         return inputs;
     }

@@ -74,8 +74,8 @@ void OutputFile::fail(const std::string& why) const {
                 ": " + why);
 }
 
-OutputFile::OutputFile(std::string path, const std::vector<InputFile>& inputs,
-                       std::string what, std::string reader)
+OutputFile::OutputFile(std::string path, const std::vector<InputFile>& inputs, std::string what,
+                       std::string reader)
     : path_(std::move(path)), what_(std::move(what)), reader_(std::move(reader)) {
     if (path_ == "-") {
         struct stat st {};

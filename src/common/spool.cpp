@@ -14,13 +14,14 @@ namespace rt {
 namespace {
 
 [[noreturn]] void fail(const char* what) {
-    throw Error(std::string("cannot ") + what + " the temporary file holding the output: " +
-                std::strerror(errno));
+    throw Error(std::string("cannot ") + what +
+                " the temporary file holding the output: " + std::strerror(errno));
 }
 
 std::FILE* anonymous_file() {
     const char* dir = std::getenv("TMPDIR");
-    std::string name = std::string(dir != nullptr && *dir != '\0' ? dir : "/tmp") + "/rt-spool.XXXXXX";
+    std::string name =
+        std::string(dir != nullptr && *dir != '\0' ? dir : "/tmp") + "/rt-spool.XXXXXX";
     const int fd = ::mkstemp(name.data());
     if (fd < 0) fail("create");
     ::unlink(name.c_str());  // gone once closed, even if the program is killed

@@ -57,8 +57,9 @@ FileMeshShape make(const MeshFile& file, long mode, int threads) {
     if (file.triangles.empty()) throw Error("it has no faces");
     mesh.core.vertices = file.positions;
     FileMeshShape made;
-    made.skipped = mesh_core::build(mesh.core, static_cast<long>(file.triangles.size()), threads,
-                                    [&](long i) { return file.triangles[static_cast<std::size_t>(i)]; });
+    made.skipped =
+        mesh_core::build(mesh.core, static_cast<long>(file.triangles.size()), threads,
+                         [&](long i) { return file.triangles[static_cast<std::size_t>(i)]; });
     if (mesh.core.triangles.empty())
         throw Error("it has no triangle with non-zero area (all " +
                     std::to_string(file.triangles.size()) + " are degenerate)");
@@ -87,8 +88,9 @@ FileMeshShape make(const MeshFile& file, long mode, int threads) {
 ShapeData read(SceneReader& reader) {
     const long mode = reader.whole("mesh file mode (0, 1 or 2)", kFileNormals, kSmooth);
     const int threads = reader.threads();
-    return reader.mesh_file("mesh file path", static_cast<int>(mode),
-                            [mode, threads](const MeshFile& file) { return make(file, mode, threads); });
+    return reader.mesh_file(
+        "mesh file path", static_cast<int>(mode),
+        [mode, threads](const MeshFile& file) { return make(file, mode, threads); });
 }
 
 const FileMesh& mesh_of(const void* shape) { return *static_cast<const FileMesh*>(shape); }

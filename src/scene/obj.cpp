@@ -332,7 +332,9 @@ class ObjReader {
     }
 
     // A corner without a normal has the zero normal, which marks its vertex as having none.
-    Vec3 normal_of(const Corner& c) const { return c.normal == kNone ? Vec3{} : normals_[c.normal]; }
+    Vec3 normal_of(const Corner& c) const {
+        return c.normal == kNone ? Vec3{} : normals_[c.normal];
+    }
 
     // A position takes the normal of the first corner that names it; a corner with another
     // normal (by value: files often repeat one normal under several indices), or with none
