@@ -35,7 +35,7 @@ inline std::vector<ErrorCase> scene_error_cases() {
         {kViewer + "106",
          "test.in:2:1: surface 106 (use default surface) found where an object is expected"},
         {"103 1 1 1", "test.in:1:10: no viewer (102) in the scene"},
-        {"", "test.in:1:1: no viewer (102) in the scene"},
+        {"", "test.in:1:1: the scene is empty: the file holds no objects"},
         {kViewer + kViewer, "test.in:2:1: a second viewer (102); a scene has exactly one"},
         {"102 0 0 5 0 0 0 1 0 0 0 1 0 0 4",
          "test.in:1:29: viewer x resolution must be between 1 and 16384, got 0"},

@@ -58,6 +58,26 @@ TEST(read_only_prints_a_summary_and_renders_nothing) {
     CHECK_EQ(run_rt(dir, "-r < scene.in").out, std::string("<stdin>: 1 objects, 1 lights, 8x6\n"));
 }
 
+// An empty scene from a pipe says so (the program meant to write it has failed, and said why);
+// the readable language given to rt is pointed to rtpp.
+TEST(an_empty_pipe_and_a_readable_scene_get_messages_that_say_what_happened) {
+    const fs::path dir = work_dir("empty_input");
+    write_file(dir / "empty.in", "");
+    RunResult r = run_rt(dir, "-o out.ppm < empty.in");
+    CHECK_EQ(r.status, 1);
+    CHECK_EQ(r.err, std::string("<stdin>:1:1: the scene is empty: nothing came on standard "
+                                "input (when a program writes it, as in 'rtpp scene.rts | rt', "
+                                "see that program's error above)\n"));
+    write_file(dir / "first.rts", "# a camera\ncamera { position <0, 0, 5> look_at <0, 0, 0> }\n");
+    r = run_rt(dir, "first.rts -o out.ppm");
+    CHECK_EQ(r.status, 1);
+    CHECK_CONTAINS(r.err, "first.rts:2:1: expected object ID (a number), got 'camera'\n");
+    CHECK_CONTAINS(r.err, "first.rts:2:1: note: this looks like rt's readable scene language, "
+                          "which rtpp compiles to the numeric format rt reads: rtpp SCENE.rts | "
+                          "rt -o IMAGE\n");
+    CHECK(!fs::exists(dir / "out.ppm"));
+}
+
 TEST(scene_errors_exit_1_and_keep_the_old_image) {
     const fs::path dir = work_dir("errors");
     const std::string bad[] = {

@@ -184,8 +184,9 @@ TEST(end_of_file_is_reported_after_the_last_token) {
              std::string("test.in:2:8: unexpected end of file: expected sphere centre"));
     CHECK_EQ(scene_error("103 1 1 1\n\n"), std::string("test.in:1:10: no viewer (102) in the "
                                                        "scene; one is required"));
-    CHECK_EQ(scene_error("\n\n"), std::string("test.in:1:1: no viewer (102) in the scene; one is "
-                                              "required"));
+    CHECK_EQ(scene_error("\n\n"),
+             std::string("test.in:1:1: the scene is empty: the file holds no objects (and no "
+                         "viewer, 102, which every scene needs)"));
 }
 
 namespace {

@@ -1,5 +1,6 @@
 // The dispatch: object IDs at the top level and nested (shapes, surfaces, lights), the viewer,
 // and the note that places an error at an object ID after the object before it.
+#include <cctype>
 #include <string>
 
 #include "rt/error.h"
@@ -158,9 +159,19 @@ void SceneReader::read_top_level_object(Scene& scene, bool& have_viewer) {
     const long numbers_before = numbers_read_;
     const Location last_number_before = last_number_;
     long type_id = 0;
+    // A word where the first ID should be is most likely rt's readable language, which rtpp
+    // compiles: say so, rather than only that a number was expected.
+    const std::string& first_text = lexer_->peek().text;
+    const bool word_first = numbers_before == 0 && !first_text.empty() &&
+                            std::isalpha(static_cast<unsigned char>(first_text[0])) != 0;
     try {
         type_id = id("object ID");
     } catch (const Error& e) {
+        if (word_first)
+            throw Error(std::string(e.what()) + "\n" + lexer_->place(where) +
+                        ": note: this looks like rt's readable scene language, which rtpp "
+                        "compiles to the numeric format rt reads: rtpp SCENE.rts | rt -o "
+                        "IMAGE");
         const std::string note = previous_object_note(where, numbers_before, last_number_before);
         if (note.empty()) throw;
         throw Error(std::string(e.what()) + "\n" + lexer_->place(where) + ": " + note);
@@ -219,6 +230,13 @@ Scene SceneReader::read_scene() {
     Scene scene;
     bool have_viewer = false;
     while (!lexer_->peek().at_end()) read_top_level_object(scene, have_viewer);
+    if (numbers_read_ == 0)
+        fail(lexer_->peek().where,
+             lexer_->name() == "<stdin>"
+                 ? "the scene is empty: nothing came on standard input (when a program writes "
+                   "it, as in 'rtpp scene.rts | rt', see that program's error above)"
+                 : "the scene is empty: the file holds no objects (and no viewer, 102, which "
+                   "every scene needs)");
     if (!have_viewer) fail(lexer_->peek().where, "no viewer (102) in the scene; one is required");
     scene.skipped_triangles = skipped_triangles_;
     scene.notes = std::move(notes_);
