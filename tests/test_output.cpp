@@ -183,6 +183,30 @@ TEST(a_terminal_is_refused) {
     ::close(master);
 }
 
+// A scene typed at a terminal: rt says it is reading it, and one Ctrl-D ends it, as for cat.
+TEST(a_scene_typed_at_a_terminal_ends_with_one_ctrl_d) {
+    const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
+    if (master < 0 || ::grantpt(master) != 0 || ::unlockpt(master) != 0) return;  // no ptys
+    const char* name = ::ptsname(master);
+    const int slave = name != nullptr ? ::open(name, O_RDWR | O_NOCTTY) : -1;
+    CHECK(slave >= 0);
+    const fs::path dir = scene_dir("terminal_input");
+    // The line discipline is canonical by default: each line goes on its newline, and a
+    // Ctrl-D at the start of a line is the end of the input.
+    const std::string typed = kScene + "\x04";
+    CHECK_EQ(::write(master, typed.data(), typed.size()), static_cast<ssize_t>(typed.size()));
+    SpawnOptions options;
+    options.stdin_fd = slave;
+    const pid_t pid = spawn_rt(dir, {"-o", "out.ppm"}, options);
+    const int status = wait_for(pid, std::chrono::seconds(30));
+    CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    CHECK_CONTAINS(read_file(dir / "rt.err"),
+                   "rt: reading the scene from the terminal; end it with Ctrl-D");
+    CHECK_EQ(read_file(dir / "out.ppm").substr(0, 3), std::string("P6\n"));
+    ::close(slave);
+    ::close(master);
+}
+
 TEST(the_scene_and_its_textures_are_never_written) {
     const fs::path dir = scene_dir("inputs");
     write_file(dir / "tex.ppm", "P3\n1 1\n255\n1 2 3\n");

@@ -208,6 +208,10 @@ int choose_threads(const CommandLine& cl, const JobserverAuth& auth,
 int run_job(const CommandLine& cl, int threads) try {
     RunStatistics statistics;
     std::vector<SceneInput> files;
+    // A scene typed at a terminal: without a word rt would seem to hang.
+    if (cl.input == "-" && isatty(STDIN_FILENO) != 0 && !cl.quiet)
+        std::cerr << "rt: reading the scene from the terminal; end it with Ctrl-D (or give a "
+                     "file: rt scene.in, rt < scene.in)\n";
     Scene scene = read_scene_file(cl.input, threads, &statistics.times, &files);
     const PixelRect region = fit_command_line(cl, scene.viewer);
     show_notes(cl, scene);

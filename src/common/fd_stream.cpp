@@ -18,12 +18,18 @@ FdBuf::~FdBuf() {
 
 FdBuf::int_type FdBuf::underflow() {
     if (gptr() < egptr()) return traits_type::to_int_type(*gptr());
+    // The end, once seen, stays: a terminal's Ctrl-D ends one read, and reading again would
+    // wait for another.
+    if (at_end_) return traits_type::eof();
     ssize_t got = 0;
     do {
         got = ::read(fd_, buffer_.get(), kSize);
     } while (got < 0 && errno == EINTR);
     if (got < 0) throw Error(what_ + ": " + std::strerror(errno));
-    if (got == 0) return traits_type::eof();
+    if (got == 0) {
+        at_end_ = true;
+        return traits_type::eof();
+    }
     consumed_ += got;
     setg(buffer_.get(), buffer_.get(), buffer_.get() + got);
     return traits_type::to_int_type(*gptr());

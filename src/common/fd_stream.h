@@ -33,6 +33,7 @@ class FdBuf : public std::streambuf {
     bool owns_;
     std::unique_ptr<char[]> buffer_;
     std::int64_t consumed_ = 0;  // bytes read from the descriptor
+    bool at_end_ = false;        // read() has returned 0
 };
 
 }  // namespace rt
