@@ -28,6 +28,7 @@ struct SpawnOptions {
     std::string stdout_path;       // relative to dir; "" is rt.out
     int stdout_fd = -1;            // or this descriptor, when >= 0
     int stdin_fd = -1;             // standard input from this descriptor, when >= 0
+    int stderr_fd = -1;            // standard error to this descriptor instead of rt.err
     std::vector<std::string> env;  // extra NAME=VALUE settings
 };
 
@@ -63,7 +64,7 @@ inline pid_t spawn_rt(const std::filesystem::path& dir, const std::vector<std::s
     const int err_fd = ::open("rt.err", O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (out_fd < 0 || err_fd < 0) ::_exit(125);
     ::dup2(out_fd, STDOUT_FILENO);
-    ::dup2(err_fd, STDERR_FILENO);
+    ::dup2(options.stderr_fd >= 0 ? options.stderr_fd : err_fd, STDERR_FILENO);
     if (options.stdin_fd >= 0) ::dup2(options.stdin_fd, STDIN_FILENO);
     if (options.uid >= 0) {
         if (::fchown(err_fd, static_cast<uid_t>(options.uid), static_cast<gid_t>(options.uid)) !=

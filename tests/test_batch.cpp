@@ -1,10 +1,10 @@
 // Batch use: --size, progress, --stats and -q, through the library and the real binary.
 #include <string>
 
-#include "check.h"
-#include "cli_util.h"
 #include "batch/progress.h"
 #include "batch/statistics.h"
+#include "check.h"
+#include "cli_util.h"
 #include "rt/render.h"
 #include "rt/viewer.h"
 #include "scene_util.h"
@@ -120,7 +120,9 @@ TEST(progress_lines_only_when_asked_when_stderr_is_not_a_terminal) {
     CHECK_EQ(run_rt(dir, "scene.in -o out.ppm").err, "");
     const RunResult asked = run_rt(dir, "scene.in --progress -o out.ppm");
     CHECK_EQ(asked.status, 0);
-    CHECK_CONTAINS(asked.err, "rt: 100%");
+    // Each line names the image, so that lines of several renders in one log can be told apart.
+    CHECK_CONTAINS(asked.err, "rt: out.ppm: 100%");
+    CHECK_CONTAINS(run_rt(dir, "scene.in --progress > out.ppm").err, "rt: scene.in: 100%");
     CHECK_CONTAINS(asked.err, "Mrays/s");
     CHECK(asked.err.find('\r') == std::string::npos);  // plain lines for logs
     CHECK_EQ(run_rt(dir, "scene.in --progress -q -o out.ppm").err, "");

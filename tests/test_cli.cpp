@@ -72,9 +72,10 @@ TEST(an_empty_pipe_and_a_readable_scene_get_messages_that_say_what_happened) {
     r = run_rt(dir, "first.rts -o out.ppm");
     CHECK_EQ(r.status, 1);
     CHECK_CONTAINS(r.err, "first.rts:2:1: expected object ID (a number), got 'camera'\n");
-    CHECK_CONTAINS(r.err, "first.rts:2:1: note: this looks like rt's readable scene language, "
-                          "which rtpp compiles to the numeric format rt reads: rtpp SCENE.rts | "
-                          "rt -o IMAGE\n");
+    CHECK_CONTAINS(r.err,
+                   "first.rts:2:1: note: this looks like rt's readable scene language, "
+                   "which rtpp compiles to the numeric format rt reads: rtpp SCENE.rts | "
+                   "rt -o IMAGE\n");
     CHECK(!fs::exists(dir / "out.ppm"));
 }
 

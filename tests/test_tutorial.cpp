@@ -44,7 +44,8 @@ bool is_command(const std::string& block) {
 // A command of the page run in `dir`, with build/ standing for this build's programs.
 int run_step(const fs::path& dir, const std::string& command, const std::string& log) {
     std::string line = command.substr(0, command.find('\n'));
-    for (std::size_t at = line.find("build/"); at != std::string::npos; at = line.find("build/", at))
+    for (std::size_t at = line.find("build/"); at != std::string::npos;
+         at = line.find("build/", at))
         if (at == 0 || line[at - 1] == ' ') {
             line.replace(at, 6, std::string(RT_BUILD_DIR) + "/");
             at += std::string(RT_BUILD_DIR).size() + 1;
@@ -63,7 +64,7 @@ TEST(every_step_of_the_tutorial_runs_as_written) {
     std::string scene;
     int commands = 0, fragments = 0;
     for (const std::string& block : code_blocks(page)) {
-        if (block.rfind("cmake ", 0) == 0) continue;  // the build: this test runs inside it
+        if (block.rfind("cmake ", 0) == 0) continue;      // the build: this test runs inside it
         if (block.rfind("first.rts:", 0) == 0) continue;  // the quoted message, checked below
         if (!is_command(block)) {
             scene += block;
@@ -86,8 +87,10 @@ TEST(the_tutorials_error_message_is_what_rtpp_says) {
     const std::string page = read_file(fs::path(RT_SOURCE_DIR) / "docs" / "tutorial.md");
     std::string scene, quoted;
     for (const std::string& block : code_blocks(page)) {
-        if (block.rfind("first.rts:", 0) == 0) quoted = block;
-        else if (!is_command(block) && quoted.empty()) scene += block;
+        if (block.rfind("first.rts:", 0) == 0)
+            quoted = block;
+        else if (!is_command(block) && quoted.empty())
+            scene += block;
     }
     CHECK(!quoted.empty());
     // The mistake the page describes: `radus` for the first sphere's `radius`.

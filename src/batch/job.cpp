@@ -152,6 +152,13 @@ class ClaimedOutputs {
     std::string rule_;
 };
 
+// What a progress line in a log names: the image, or the scene when the image goes to
+// standard output.
+std::string progress_label(const CommandLine& cl) {
+    if (cl.output != "-") return show_token(cl.output, kShowWhole);
+    return cl.input == "-" ? "<stdin>" : show_token(cl.input, kShowWhole);
+}
+
 // The render, with a progress display on standard error when it is a terminal or --progress
 // asks for one (never under -q).
 Raster render_with_progress(const CommandLine& cl, const Scene& scene, const RenderOptions& options,
@@ -162,7 +169,7 @@ Raster render_with_progress(const CommandLine& cl, const Scene& scene, const Ren
         display.emplace(progress,
                         isatty(STDERR_FILENO) != 0 ? ProgressDisplay::Style::terminal
                                                    : ProgressDisplay::Style::lines,
-                        std::cerr);
+                        std::cerr, progress_label(cl));
     const auto start = Clock::now();
     Raster image = render_region(scene, options, region, &statistics.rays, &progress);
     statistics.times.render = seconds_since(start);

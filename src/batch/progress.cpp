@@ -1,8 +1,13 @@
 #include "batch/progress.h"
 
+#include <sys/ioctl.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+
+#include "common/interrupt.h"
 
 namespace rt {
 
@@ -37,12 +42,36 @@ std::string format_progress(double fraction, double rays_per_second, double elap
     return line;
 }
 
-ProgressDisplay::ProgressDisplay(const RenderProgress& progress, Style style, std::ostream& out)
+std::string fit_to_width(std::string line, int columns) {
+    if (columns > 1 && line.size() >= static_cast<std::size_t>(columns))
+        line.resize(static_cast<std::size_t>(columns - 1));
+    return line;
+}
+
+namespace {
+// The width of the terminal on standard error, asked at every update so that a resized
+// window is followed; 0 when it cannot be told.
+int terminal_columns() {
+    winsize size{};
+    if (::ioctl(STDERR_FILENO, TIOCGWINSZ, &size) != 0) return 0;
+    return size.ws_col;
+}
+}  // namespace
+
+ProgressDisplay::ProgressDisplay(const RenderProgress& progress, Style style, std::ostream& out,
+                                 std::string label)
     : progress_(progress),
       style_(style),
       out_(out),
+      label_(std::move(label)),
       start_(std::chrono::steady_clock::now()),
       thread_([this](std::stop_token stop) { run(stop); }) {}
+
+// "rt: out.png:  45% ..." for "rt:  45% ...".
+std::string ProgressDisplay::labelled(const std::string& line) const {
+    if (label_.empty()) return line;
+    return "rt: " + label_ + ":" + line.substr(3);
+}
 
 std::string ProgressDisplay::current_line() const {
     const std::uint64_t total = progress_.rows_total.load(std::memory_order_relaxed);
@@ -66,13 +95,16 @@ void ProgressDisplay::run(std::stop_token stop) {
     if (style_ == Style::terminal) {
         if (stopped_during(kTerminalDelay)) return;
         do {
-            // Back to the start of the line, the new text, and the rest of the line cleared.
-            out_ << '\r' << current_line() << "\x1b[K" << std::flush;
+            // Back to the start of the line, the new text cut to the terminal's width (a line
+            // that wraps cannot be rewritten in place), and the rest of the line cleared.
+            out_ << '\r' << fit_to_width(current_line(), terminal_columns()) << "\x1b[K"
+                 << std::flush;
             shown_ = true;
+            interrupt::set_terminal_line(true);
         } while (!stopped_during(kTerminalInterval));
         return;
     }
-    while (!stopped_during(kLinesInterval)) out_ << current_line() << '\n' << std::flush;
+    while (!stopped_during(kLinesInterval)) out_ << labelled(current_line()) << '\n' << std::flush;
 }
 
 void ProgressDisplay::finish() {
@@ -81,8 +113,9 @@ void ProgressDisplay::finish() {
     thread_.join();
     if (style_ == Style::terminal) {
         if (shown_) out_ << "\r\x1b[K" << std::flush;
+        interrupt::set_terminal_line(false);
     } else {
-        out_ << current_line() << '\n' << std::flush;
+        out_ << labelled(current_line()) << '\n' << std::flush;
     }
 }
 

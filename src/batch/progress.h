@@ -18,6 +18,9 @@ std::string format_duration(double seconds);
 // "42%  12.3 Mrays/s  0:05 elapsed  0:07 left"; the time left is left out until it can be
 // estimated (fraction 0).
 std::string format_progress(double fraction, double rays_per_second, double elapsed_seconds);
+// The line cut to fit a terminal `columns` wide without wrapping (one column is left free, as
+// a terminal wraps when the last one is written); 0 columns (unknown) leaves it whole.
+std::string fit_to_width(std::string line, int columns);
 
 class ProgressDisplay {
   public:
@@ -26,8 +29,11 @@ class ProgressDisplay {
         lines,     // a plain line now and then, and one at the end (for logs)
     };
 
-    // Starts showing `progress` on `out` until destroyed (or finish() is called).
-    ProgressDisplay(const RenderProgress& progress, Style style, std::ostream& out);
+    // Starts showing `progress` on `out` until destroyed (or finish() is called). In the
+    // lines style each line names `label` (the image being made), so that lines from several
+    // renders in one log can be told apart: "rt: out.png:  45% ...".
+    ProgressDisplay(const RenderProgress& progress, Style style, std::ostream& out,
+                    std::string label = {});
     ~ProgressDisplay() { finish(); }
     ProgressDisplay(const ProgressDisplay&) = delete;
     ProgressDisplay& operator=(const ProgressDisplay&) = delete;
@@ -38,10 +44,12 @@ class ProgressDisplay {
   private:
     void run(std::stop_token stop);
     std::string current_line() const;
+    std::string labelled(const std::string& line) const;
 
     const RenderProgress& progress_;
     Style style_;
     std::ostream& out_;
+    std::string label_;
     std::chrono::steady_clock::time_point start_;
     std::mutex mutex_;
     std::condition_variable_any wake_;

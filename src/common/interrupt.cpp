@@ -33,6 +33,9 @@ constexpr int kHandled[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE};
 
 // "PROGRAM: interrupted\n", set before the handler is installed.
 char g_interrupted[64] = "rt: interrupted\n";
+// Whether a progress line is on the terminal (interrupt::set_terminal_line).
+std::atomic<bool> g_terminal_line{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "read in a signal handler");
 
 void write_stderr(const char* text) {
     std::size_t left = std::strlen(text);
@@ -53,7 +56,10 @@ extern "C" void on_signal(int sig) {
             if (g_slot_state[i].exchange(kFree) == kArmed) ::unlink(g_paths[i]);
         give_back_tokens();
         // A reader that went away (SIGPIPE) is not news to the user.
-        if (sig != SIGPIPE) write_stderr(g_interrupted);
+        if (sig != SIGPIPE) {
+            if (g_terminal_line.load()) write_stderr("\r\x1b[K");
+            write_stderr(g_interrupted);
+        }
         g_handling.store(2);
     } else {
         // Another thread is cleaning up: let it finish before this signal ends the process.
@@ -78,6 +84,8 @@ sigset_t handled_set() {
 }
 
 }  // namespace
+
+void set_terminal_line(bool shown) { g_terminal_line.store(shown); }
 
 void install_handlers(std::string_view program) {
     const std::string_view tail = ": interrupted\n";

@@ -21,6 +21,10 @@ int register_temporary(const std::string& path);
 // The file was renamed or removed: the handler must leave that name alone.
 void forget_temporary(int slot);
 
+// A progress line is (or is no longer) on the terminal that standard error is: the handler
+// erases it before its message, so that "rt: interrupted" starts a clean line.
+void set_terminal_line(bool shown);
+
 // Jobserver tokens taken: the handler, or give_back_tokens(), writes them back to fd.
 inline constexpr int kMaxTokens = 1024;
 void hold_tokens(int fd, const char* tokens, int count);
