@@ -42,8 +42,38 @@ TEST(local_strips_merge_into_the_whole_render) {
                    "' '", (dir / "merged.png").string(), "' >'", log.string(), "' 2>&1")),
         0);
     CHECK_EQ(read_file(log), "");
-    CHECK(fs::exists(dir / "strips" / "strip-6.png"));
+    CHECK(fs::exists(dir / "strips" / "strip-6-of-7.png"));
     CHECK(read_file(dir / "merged.png") == whole_render(dir));
+    // Again into the same directory with fewer strips: the old ones are not mixed in.
+    CHECK_EQ(
+        shell(join("cd '", dir.string(), "' && ", kEnvironment, "JOBS=3 '",
+                   (kFarm / "local.sh").string(), "' '", kScene, "' 3 '", (dir / "strips").string(),
+                   "' '", (dir / "merged3.png").string(), "' >'", log.string(), "' 2>&1")),
+        0);
+    CHECK_EQ(read_file(log), "");
+    CHECK(read_file(dir / "merged3.png") == whole_render(dir));
+}
+
+// A scene rt cannot read: one message, rt's own, and a failing status; no strip starts.
+TEST(a_bad_scene_fails_once_with_rts_message) {
+    if (!on_path("xargs")) {
+        std::cout << "xargs is not installed: not checked\n";
+        return;
+    }
+    const fs::path dir = work_dir("farm-bad");
+    const fs::path log = dir / "local.log";
+    CHECK(
+        shell(join("cd '", dir.string(), "' && ", kEnvironment, "'", (kFarm / "local.sh").string(),
+                   "' nonexistent.in 2 strips out.png >'", log.string(), "' 2>&1")) != 0);
+    CHECK_EQ(read_file(log), std::string("nonexistent.in: cannot open scene file: No such file "
+                                         "or directory\n"));
+    CHECK(!fs::exists(dir / "strips"));
+    // strip.sh alone, as a farm job runs it, fails with the same message, not a --region one.
+    CHECK(
+        shell(join("cd '", dir.string(), "' && ", kEnvironment, "'", (kFarm / "strip.sh").string(),
+                   "' nonexistent.in 2 0 . >'", log.string(), "' 2>&1")) != 0);
+    CHECK_EQ(read_file(log), std::string("nonexistent.in: cannot open scene file: No such file "
+                                         "or directory\n"));
 }
 
 TEST(slurm_strips_merge_into_the_whole_render_where_a_cluster_runs) {

@@ -1,14 +1,19 @@
 #!/bin/sh
 # strip.sh SCENE STRIPS INDEX OUTDIR: renders strip INDEX (0 to STRIPS-1) of SCENE, rows split
-# as evenly as they go, to OUTDIR/strip-INDEX.png. Every job of the farm runs this; extra rt
-# options (the same for every strip) come from RTFLAGS, rt itself from RT.
+# as evenly as they go, to OUTDIR/strip-INDEX-of-STRIPS.png (so that the strips of a run with
+# another STRIPS never mix with these). Every job of the farm runs this; extra rt options (the
+# same for every strip) come from RTFLAGS, rt itself from RT (default: rt on the PATH, else
+# the build tree of the rt checkout this example is in).
 set -eu
 scene=$1 strips=$2 index=$3 outdir=$4
-rt=${RT:-rt}
+here=$(cd "$(dirname "$0")" && pwd)
+rt=${RT:-$(command -v rt || echo "$here/../../../build/rt")}
 # The full size from rt -r's summary, "scene: 5 objects, 1 lights, 256x256" (after --size).
-size=$("$rt" -r -q ${RTFLAGS:-} "$scene" | sed 's/.* \([0-9]*x[0-9]*\)[^x]*$/\1/')
+# rt -r runs on its own first: in a pipe its failure would be lost (sh has no pipefail).
+summary=$("$rt" -r -q ${RTFLAGS:-} "$scene")
+size=$(printf '%s\n' "$summary" | sed 's/.* \([0-9]*x[0-9]*\)[^x]*$/\1/')
 width=${size%x*} height=${size#*x}
 y0=$((height * index / strips))
 y1=$((height * (index + 1) / strips))
 exec "$rt" -q ${RTFLAGS:-} -j "${THREADS:-1}" --region "0,$width,$y0,$y1" \
-    -o "$outdir/strip-$index.png" "$scene"
+    -o "$outdir/strip-$index-of-$strips.png" "$scene"

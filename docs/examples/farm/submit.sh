@@ -10,4 +10,4 @@ mkdir -p "$outdir"
 array=$(sbatch --parsable --array="0-$((strips - 1))" --output="$outdir/slurm-%A_%a.out" \
     "$FARM_DIR/render.sbatch" "$scene" "$strips" "$outdir")
 sbatch --parsable --dependency="afterok:${array%%;*}" --output="$outdir/slurm-%j.out" \
-    "$FARM_DIR/merge.sbatch" "$outdir" "$image"
+    "$FARM_DIR/merge.sbatch" "$outdir" "$image" "$strips"
