@@ -267,6 +267,42 @@ TEST(conventions) {
     CHECK_CONTAINS(run_rt(dir, "-d ++5").err, "-d expects a whole number, got '++5'");
 }
 
+// getopt's conventions: short options bundle, the last of a bundle may take the rest as its
+// value; a misspelt option is answered with the nearest, in all three programs.
+TEST(short_options_bundle_and_misspelt_ones_get_a_suggestion) {
+    const fs::path dir = work_dir("bundles");
+    write_file(dir / "scene.in", kScene);
+    RunResult r = run_rt(dir, "-qr scene.in");
+    CHECK_EQ(r.status, 0);
+    CHECK_EQ(r.out, std::string("scene.in: 1 objects, 1 lights, 8x6\n"));
+    const rt::CommandLine cl = rt::parse_command_line({"-qoout.png", "-d3", "scene.in"});
+    CHECK(cl.quiet);
+    CHECK_EQ(cl.output, std::string("out.png"));
+    CHECK_EQ(cl.render.max_depth, 3);
+    const rt::CommandLine split = rt::parse_command_line({"-qo", "out.png", "scene.in"});
+    CHECK_EQ(split.output, std::string("out.png"));
+    r = run_rt(dir, "-qx scene.in");
+    CHECK_EQ(r.status, 2);
+    CHECK_CONTAINS(r.err, "rt: unknown option '-x' (in '-qx')");
+    for (const auto& [typed, meant] :
+         {std::pair{"--no-shadow", "--no-shadows"}, std::pair{"--stat", "--stats"},
+          std::pair{"--sampels", "--samples"}, std::pair{"--regoin", "--region"}}) {
+        r = run_rt(dir, std::string(typed) + " scene.in");
+        CHECK_EQ(r.status, 2);
+        CHECK_CONTAINS(r.err, join("unknown option '", typed, "'; did you mean '", meant, "'?"));
+    }
+    // Nothing near enough: no suggestion.
+    r = run_rt(dir, "--frobnicate scene.in");
+    CHECK_EQ(r.err, std::string("rt: unknown option '--frobnicate'\nTry 'rt --help' for more "
+                                "information.\n"));
+    CHECK_CONTAINS(run_program(RTPP_BINARY, dir, "--incude x").err,
+                   "rtpp: unknown option '--incude'; did you mean '--include'?");
+    CHECK_CONTAINS(run_program(RTIMG_BINARY, dir, "diff --tolerence 2 a b").err,
+                   "rtimg: unknown option '--tolerence'; did you mean '--tolerance'?");
+    CHECK_EQ(rt::nearest_word("--bits", {"--bits", "--gamma"}), std::string("--bits"));
+    CHECK_EQ(rt::nearest_word("-x", {"-q", "-r"}), std::string());
+}
+
 TEST(text_that_cannot_be_written_is_an_error) {
     // /dev/full takes no data (ENOSPC). It is only a redirection here, never an -o target.
     if (!fs::exists("/dev/full")) return;

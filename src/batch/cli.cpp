@@ -280,7 +280,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
         } else if (arg == "-V" || arg == "--version") {
             flag(cl.version, true);
         } else {
-            options.unknown();
+            options.unknown(usage_text());
         }
     }
     if (!cl.depfile.empty()) {

@@ -1,5 +1,7 @@
 #include "common/option_reader.h"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -56,16 +58,36 @@ OptionReader::OptionReader(const std::vector<std::string>& args, std::string_vie
     : args_(args), short_with_value_(short_with_value) {}
 
 bool OptionReader::next() {
+    has_joined_value_ = false;
+    joined_value_.clear();
+    if (!bundled_.empty()) {
+        // The next letter of a bundle: an option like any, its value the rest if it takes one.
+        name_ = std::string("-") + bundled_[0];
+        bundled_.erase(0, 1);
+        is_option_ = true;
+        if (short_with_value_.find(name_[1]) != std::string_view::npos && !bundled_.empty()) {
+            joined_value_ = std::move(bundled_);
+            bundled_.clear();
+            has_joined_value_ = true;
+        }
+        return true;
+    }
     if (!options_ended_ && next_ < args_.size() && args_[next_] == "--") {
         options_ended_ = true;
         ++next_;
     }
     if (next_ >= args_.size()) return false;
     name_ = args_[next_++];
-    has_joined_value_ = false;
-    joined_value_.clear();
+    written_ = name_;
     is_option_ = !options_ended_ && name_.size() > 1 && name_[0] == '-';
     if (!is_option_) return true;
+    if (name_[1] != '-' && name_.size() > 2 &&
+        short_with_value_.find(name_[1]) == std::string_view::npos) {
+        // "-qr": -q now, the rest next.
+        bundled_ = name_.substr(2);
+        name_.resize(2);
+        return true;
+    }
     if (name_[1] == '-') {
         if (const auto eq = name_.find('='); eq != std::string::npos) {
             joined_value_ = name_.substr(eq + 1);
@@ -90,6 +112,51 @@ void OptionReader::no_value() const {
     if (has_joined_value_) throw UsageError{show_token(name_) + " takes no value"};
 }
 
-void OptionReader::unknown() const { throw UsageError{"unknown option " + quote_token(name_)}; }
+std::string nearest_word(std::string_view word, const std::vector<std::string>& candidates) {
+    // Levenshtein distance, one row at a time.
+    const auto distance = [](std::string_view a, std::string_view b) {
+        std::vector<std::size_t> row(b.size() + 1);
+        for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+        for (std::size_t i = 1; i <= a.size(); ++i) {
+            std::size_t diagonal = row[0];
+            row[0] = i;
+            for (std::size_t j = 1; j <= b.size(); ++j) {
+                const std::size_t above = row[j];
+                row[j] = std::min({row[j] + 1, row[j - 1] + 1,
+                                   diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+                diagonal = above;
+            }
+        }
+        return row[b.size()];
+    };
+    std::string best;
+    std::size_t best_distance = 3;
+    for (const std::string& candidate : candidates) {
+        const std::size_t d = distance(word, candidate);
+        if (d < best_distance && 2 * d < word.size()) {
+            best = candidate;
+            best_distance = d;
+        }
+    }
+    return best;
+}
+
+void OptionReader::unknown(std::string_view help) const {
+    std::string message = "unknown option " + quote_token(name_);
+    if (written_ != name_ && written_.rfind("--", 0) != 0)
+        message += " (in " + quote_token(written_) + ")";
+    // The long options the help lists: every "--word" in it.
+    std::vector<std::string> known;
+    for (std::size_t at = help.find("--"); at != std::string_view::npos; at = help.find("--", at + 2)) {
+        std::size_t end = at + 2;
+        while (end < help.size() && (std::isalnum(static_cast<unsigned char>(help[end])) != 0 ||
+                                     help[end] == '-'))
+            ++end;
+        if (end > at + 2) known.emplace_back(help.substr(at, end - at));
+    }
+    if (const std::string near = nearest_word(name_, known); !near.empty())
+        message += "; did you mean '" + near + "'?";
+    throw UsageError{message};
+}
 
 }  // namespace rt

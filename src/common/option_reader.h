@@ -1,6 +1,8 @@
-// The command-line conventions rt, rtpp and rtimg share, read in one place: "--name=value"
-// or "--name value", "-xVALUE" or "-x VALUE" for the short options that take a value, "--"
-// ending the options, and "-" alone an operand (standard input or output).
+// The command-line conventions rt, rtpp and rtimg share, read in one place, as getopt reads
+// them: "--name=value" or "--name value", "-xVALUE" or "-x VALUE" for the short options that
+// take a value, short options bundled ("-qr" is "-q -r"; in "-qoout.png" the rest after a
+// letter that takes a value is its value), "--" ending the options, and "-" alone an operand
+// (standard input or output). A misspelt option gets the nearest the program has suggested.
 #pragma once
 
 #include <cstddef>
@@ -9,6 +11,10 @@
 #include <vector>
 
 namespace rt {
+
+// The word among `candidates` nearest to `word` (edit distance at most 2, and less than half
+// its length), or "" when none is near enough: for "did you mean" in messages.
+std::string nearest_word(std::string_view word, const std::vector<std::string>& candidates);
 
 // A mistake on the command line: the programs print it with a pointer to --help, exit 2.
 struct UsageError {
@@ -40,8 +46,9 @@ class OptionReader {
     std::string value();
     // Refuses a value written with an option that takes none (--quiet=1).
     void no_value() const;
-    // The error for an option the program does not have.
-    [[noreturn]] void unknown() const;
+    // The error for an option the program does not have; `help` is the program's --help
+    // text, whose "--name" words are the options a near miss is matched against.
+    [[noreturn]] void unknown(std::string_view help = {}) const;
 
   private:
     const std::vector<std::string>& args_;
@@ -52,6 +59,8 @@ class OptionReader {
     std::string name_;
     std::string joined_value_;
     bool has_joined_value_ = false;
+    std::string bundled_;  // short options still to come from one argument ("r" of "-qr")
+    std::string written_;  // the argument as written, for messages
 };
 
 }  // namespace rt

@@ -22,7 +22,7 @@ Arguments parse_arguments(const std::vector<std::string>& args,
         const std::string arg = options.argument() == "-o" ? "--output" : options.argument();
         const bool takes_value = std::find(valued.begin(), valued.end(), arg) != valued.end();
         if (!takes_value && std::find(flags.begin(), flags.end(), arg) == flags.end())
-            options.unknown();
+            options.unknown(usage_text());
         if (takes_value) {
             out.values[arg] = options.value();
         } else {

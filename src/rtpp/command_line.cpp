@@ -83,7 +83,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
             options.no_value();
             cl.version = true;
         } else {
-            options.unknown();
+            options.unknown(usage_text());
         }
     }
     cl.from = from.value_or(ends_with_nff(cl.input) ? InputFormat::nff : InputFormat::rts);
