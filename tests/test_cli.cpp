@@ -303,6 +303,29 @@ TEST(short_options_bundle_and_misspelt_ones_get_a_suggestion) {
     CHECK_EQ(rt::nearest_word("-x", {"-q", "-r"}), std::string());
 }
 
+// "rt scene.in > out.png" writes PPM (rt cannot see the name behind a redirect when it
+// chooses), and says so, since it can learn the name afterwards; -f or a PPM name is quiet.
+TEST(a_redirect_to_a_name_of_another_format_is_warned_about) {
+    const fs::path dir = work_dir("redirect_format");
+    write_file(dir / "scene.in", kScene);
+    // Run through the shell with its own redirect (run_rt redirects standard output itself).
+    const auto redirected = [&](const std::string& args, const std::string& to) {
+        CHECK_EQ(shell(join("cd '", dir.string(), "' && '", rt_binary(), "' ", args, " >", to,
+                            " 2>err.txt")),
+                 0);
+        return read_file(dir / "err.txt");
+    };
+    const std::string err = redirected("scene.in", "out.png");
+    CHECK_CONTAINS(err, "rt: warning: standard output is '" + (dir / "out.png").string() +
+                            "', but rt writes PPM there: a redirect hides the name rt chooses "
+                            "the format by (use -o out.png, or -f png)\n");
+    CHECK_EQ(read_file(dir / "out.png").substr(0, 2), std::string("P6"));
+    CHECK_EQ(redirected("-f png scene.in", "out.png"), "");
+    CHECK_EQ(read_file(dir / "out.png").substr(1, 3), std::string("PNG"));
+    CHECK_EQ(redirected("scene.in", "out.ppm"), "");
+    CHECK_EQ(redirected("-q scene.in", "out.png"), "");
+}
+
 TEST(text_that_cannot_be_written_is_an_error) {
     // /dev/full takes no data (ENOSPC). It is only a redirection here, never an -o target.
     if (!fs::exists("/dev/full")) return;

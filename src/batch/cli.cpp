@@ -218,6 +218,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
             if (cl.output.empty()) throw UsageError{"-o needs a file name"};
         } else if (arg == "-f" || arg == "--format") {
             format = parse_format(take_value());
+            cl.format_given = true;
         } else if (arg == "--bits") {
             const std::string bits = take_value();
             if (bits != "8" && bits != "16")
@@ -306,7 +307,7 @@ std::optional<std::string> region_problem(const PixelRect& region, int width, in
 
 void add_region_metadata(ImageMetadata& metadata, const PixelRect& region, int width, int height) {
     metadata.set(kRegionKey, std::to_string(region.x0) + "," + std::to_string(region.x1) + "," +
-                               std::to_string(region.y0) + "," + std::to_string(region.y1));
+                                 std::to_string(region.y0) + "," + std::to_string(region.y1));
     metadata.set(kFullSizeKey, std::to_string(width) + "x" + std::to_string(height));
 }
 

@@ -28,8 +28,9 @@ struct CommandLine {
     // The file's format (from -f, else the output's extension, else PPM), bits and gamma;
     // its metadata is filled in from the rest by image_metadata().
     ImageEncoding image;
-    bool metadata = true;  // --no-metadata turns it off
-    std::string depfile;   // -M: where to write a make rule; empty for none
+    bool format_given = false;  // -f was given (else the format comes from -o's name)
+    bool metadata = true;       // --no-metadata turns it off
+    std::string depfile;        // -M: where to write a make rule; empty for none
     bool read_only = false;
     bool quiet = false;     // -q: nothing on stderr but errors
     bool progress = false;  // --progress: progress lines even when stderr is not a terminal

@@ -1,7 +1,9 @@
 #include "batch/job.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -90,6 +92,27 @@ void show_notes(const CommandLine& cl, const Scene& scene) {
     if (cl.quiet) return;
     for (const std::string& note : scene.notes)
         std::cerr << "rt: note: " << printable_message(note) << "\n";
+}
+
+// "rt scene.in > out.png": rt cannot see the name behind a redirect when it chooses the
+// format, but it can say so afterwards, when standard output is a regular file whose name
+// (through /proc/self/fd/1) asks for another format than the PPM it gets.
+void warn_about_redirected_format(const CommandLine& cl) {
+    if (cl.quiet || cl.output != "-" || cl.format_given) return;
+    struct stat st {};
+    if (::fstat(STDOUT_FILENO, &st) != 0 || !S_ISREG(st.st_mode)) return;
+    std::error_code ec;
+    const fs::path name = fs::read_symlink("/proc/self/fd/1", ec);
+    if (ec) return;
+    const auto format = format_from_extension(name.string());
+    if (!format || *format == cl.image.format) return;
+    std::string wrote = format_name(cl.image.format);
+    for (char& c : wrote) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    std::cerr << "rt: warning: standard output is " << quote_token(name.string(), kShowWhole)
+              << ", but rt writes " << wrote
+              << " there: a redirect hides the name rt chooses the format by (use -o "
+              << show_token(name.filename().string(), kShowWhole) << ", or -f "
+              << format_name(*format) << ")\n";
 }
 
 void warn_about_cost(const CommandLine& cl, const Scene& scene) {
@@ -222,6 +245,7 @@ int run_job(const CommandLine& cl, int threads) try {
     Scene scene = read_scene_file(cl.input, threads, &statistics.times, &files);
     const PixelRect region = fit_command_line(cl, scene.viewer);
     show_notes(cl, scene);
+    warn_about_redirected_format(cl);
     if (cl.read_only) return print_summary(cl, scene);
     warn_about_cost(cl, scene);
     ClaimedOutputs outputs(cl, scene.viewer, region, files);

@@ -122,8 +122,8 @@ std::string nearest_word(std::string_view word, const std::vector<std::string>& 
             row[0] = i;
             for (std::size_t j = 1; j <= b.size(); ++j) {
                 const std::size_t above = row[j];
-                row[j] = std::min({row[j] + 1, row[j - 1] + 1,
-                                   diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+                row[j] = std::min(
+                    {row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
                 diagonal = above;
             }
         }
@@ -147,10 +147,11 @@ void OptionReader::unknown(std::string_view help) const {
         message += " (in " + quote_token(written_) + ")";
     // The long options the help lists: every "--word" in it.
     std::vector<std::string> known;
-    for (std::size_t at = help.find("--"); at != std::string_view::npos; at = help.find("--", at + 2)) {
+    for (std::size_t at = help.find("--"); at != std::string_view::npos;
+         at = help.find("--", at + 2)) {
         std::size_t end = at + 2;
-        while (end < help.size() && (std::isalnum(static_cast<unsigned char>(help[end])) != 0 ||
-                                     help[end] == '-'))
+        while (end < help.size() &&
+               (std::isalnum(static_cast<unsigned char>(help[end])) != 0 || help[end] == '-'))
             ++end;
         if (end > at + 2) known.emplace_back(help.substr(at, end - at));
     }
