@@ -20,6 +20,19 @@ struct RenderProgress {
     std::atomic<std::uint64_t> rays{0};
 };
 
+// Rows kept between runs (rt's --checkpoint): a render given a store takes from it every row
+// it holds instead of tracing it, and hands it every row it finishes. Pass 0 is the one-ray
+// pass of adaptive supersampling (over the region and its one-pixel margin), pass 1 the
+// final values. The render's threads call it at once, so it must be thread-safe. Values are
+// three per pixel, columns x0 to x1 - 1 of row y in full-image coordinates.
+class RowStore {
+  public:
+    virtual ~RowStore() = default;
+    // Fills `values` and returns true when the store holds that row.
+    virtual bool restore(int pass, int y, int x0, int x1, double* values) = 0;
+    virtual void finished(int pass, int y, int x0, int x1, const double* values) = 0;
+};
+
 // Renders every pixel of the scene's viewer. Rows are shared among threads, and each pixel
 // depends on nothing else, so the result is the same whatever the number of threads. With
 // options.adaptive_threshold, every pixel is first traced with the original's one ray, and
@@ -37,8 +50,11 @@ inline PixelRect image_rect(const Viewer& v) { return {0, 0, v.xres, v.yres}; }
 // otherwise) into a raster of its size. Each pixel is traced at its own place in the full
 // image, and adaptive decisions see the one-ray values of a one-pixel margin around the
 // region, so every pixel equals the same pixel of render(), whatever the thread count.
+// With `rows`, held rows are restored rather than traced (they count as done for `progress`,
+// with no rays) and finished ones handed to it; the raster is the same either way.
 Raster render_region(const Scene& scene, const RenderOptions& options, const PixelRect& region,
-                     RenderStats* stats = nullptr, RenderProgress* progress = nullptr);
+                     RenderStats* stats = nullptr, RenderProgress* progress = nullptr,
+                     RowStore* rows = nullptr);
 
 // The number of threads a render uses for RenderOptions::threads (0: one per hardware thread).
 int worker_threads(int requested);

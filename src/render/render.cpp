@@ -68,6 +68,35 @@ void for_each_row(std::vector<Tracer>& tracers, const PixelRect& rect, const Wor
     worker(tracers[0]);
 }  // every worker joins here
 
+// One row of one pass, through the store when there is one: restored if it holds the row,
+// else computed by `trace(x)` for every column and handed to it.
+template <typename Trace>
+void row_through_store(RowStore* store, int pass, int y, int x0, int x1, Window& raster,
+                       std::vector<double>& scratch, const Trace& trace) {
+    if (store == nullptr) {
+        for (int x = x0; x < x1; ++x) raster.set(x, y, trace(x));
+        return;
+    }
+    scratch.resize(static_cast<std::size_t>(x1 - x0) * kSpectrumComponents);
+    const auto at = [&](int x) {
+        return scratch.data() + static_cast<std::size_t>(x - x0) * kSpectrumComponents;
+    };
+    if (store->restore(pass, y, x0, x1, scratch.data())) {
+        for (int x = x0; x < x1; ++x) {
+            Spectrum s;
+            for (std::size_t i = 0; i < kSpectrumComponents; ++i) s[i] = at(x)[i];
+            raster.set(x, y, s);
+        }
+        return;
+    }
+    for (int x = x0; x < x1; ++x) {
+        const Spectrum s = trace(x);
+        raster.set(x, y, s);
+        for (std::size_t i = 0; i < kSpectrumComponents; ++i) at(x)[i] = s[i];
+    }
+    store->finished(pass, y, x0, x1, scratch.data());
+}
+
 // Whether one-ray values a and b differ by more than `threshold` in some component, compared
 // as the image will be written: clamped to [0, 1].
 bool differ(const Spectrum& a, const Spectrum& b, double threshold) {
@@ -94,7 +123,7 @@ bool needs_supersampling(const Window& one_ray, const PixelRect& known, int x, i
 // `raster` must cover: a region of the image rendered this way decides at its edges exactly
 // as the whole image does.
 void render_adaptive(std::vector<Tracer>& tracers, const PixelRect& rect, const PixelRect& image,
-                     double threshold, Window& raster, RenderProgress* progress) {
+                     double threshold, Window& raster, RenderProgress* progress, RowStore* store) {
     const PixelRect known = with_margin(rect, image);
     // The one-ray pass and the grid pass trace; deciding is quick and not counted.
     if (progress != nullptr)
@@ -103,7 +132,9 @@ void render_adaptive(std::vector<Tracer>& tracers, const PixelRect& rect, const 
     for_each_row(
         tracers, known,
         [&](Tracer& tracer, int y) {
-            for (int x = known.x0; x < known.x1; ++x) raster.set(x, y, tracer.one_ray(x, y));
+            thread_local std::vector<double> scratch;
+            row_through_store(store, 0, y, known.x0, known.x1, raster, scratch,
+                              [&](int x) { return tracer.one_ray(x, y); });
         },
         progress);
     // Decided for the whole rectangle before any pixel is overwritten by its grid's mean. Bytes,
@@ -119,11 +150,11 @@ void render_adaptive(std::vector<Tracer>& tracers, const PixelRect& rect, const 
     for_each_row(
         tracers, rect,
         [&](Tracer& tracer, int y) {
-            for (int x = rect.x0; x < rect.x1; ++x) {
-                if (flag(x, y) == 0) continue;
+            thread_local std::vector<double> scratch;
+            row_through_store(store, 1, y, rect.x0, rect.x1, raster, scratch, [&](int x) {
                 const Spectrum centre = raster.at(x, y);
-                raster.set(x, y, tracer.pixel(x, y, &centre));
-            }
+                return flag(x, y) == 0 ? centre : tracer.pixel(x, y, &centre);
+            });
         },
         progress);
 }
@@ -140,7 +171,7 @@ int render_threads(const RenderOptions& options, const PixelRect& region) {
 }
 
 Raster render_region(const Scene& scene, const RenderOptions& options, const PixelRect& region,
-                     RenderStats* stats, RenderProgress* progress) {
+                     RenderStats* stats, RenderProgress* progress, RowStore* rows) {
     const PixelRect image = image_rect(scene.viewer);
     if (region.empty() || !image.contains(region))
         throw std::invalid_argument("render_region: the region is empty or outside the image");
@@ -151,14 +182,17 @@ Raster render_region(const Scene& scene, const RenderOptions& options, const Pix
     const PixelRect canvas = options.adaptive_threshold ? with_margin(region, image) : region;
     Window raster(canvas);
     if (options.adaptive_threshold) {
-        render_adaptive(tracers, region, image, *options.adaptive_threshold, raster, progress);
+        render_adaptive(tracers, region, image, *options.adaptive_threshold, raster, progress,
+                        rows);
     } else {
         if (progress != nullptr)
             progress->rows_total.store(static_cast<std::uint64_t>(region.height()));
         for_each_row(
             tracers, region,
             [&](Tracer& tracer, int y) {
-                for (int x = region.x0; x < region.x1; ++x) raster.set(x, y, tracer.pixel(x, y));
+                thread_local std::vector<double> scratch;
+                row_through_store(rows, 1, y, region.x0, region.x1, raster, scratch,
+                                  [&](int x) { return tracer.pixel(x, y); });
             },
             progress);
     }
