@@ -65,7 +65,9 @@ void read_text_chunk(std::string_view type, std::string_view body, ImageMetadata
     if (++budget.entries > ImageMetadata::kMaxEntries)
         throw Error("PNG file has more than " + std::to_string(ImageMetadata::kMaxEntries) +
                     " text chunks");
-    const auto [keyword, rest] = split_keyword(body, type);
+    // Plain names rather than a structured binding, which clang 14's lambdas cannot capture.
+    const auto split = split_keyword(body, type);
+    const std::string_view keyword = split.first, rest = split.second;
     // What is left of the bound on all text: a compressed chunk may unpack to no more.
     const std::size_t room = ImageMetadata::kMaxBytes - budget.bytes;
     // A chunk that would unpack past what is left is refused with the bound in all named.
