@@ -359,3 +359,36 @@ TEST(random_close_pairs_beside_far_roots) {
     }
     CHECK_EQ(failed, 0);
 }
+
+// The solver's cube roots and trisections use no function of the C library (cbrt, cos, acos
+// round their last bit differently on other machines): its own, from correctly rounded
+// operations, must be as accurate. x^3 = a has the one real root cbrt(a), through Cardano's
+// branch (over the exponents where the solver keeps x^3 beside the constant: beyond about
+// 2^52 it drops the leading term as negligible); (x - 1)(x - 2)(x - 3) and its kin with three real
+// roots go through the trigonometric one.
+TEST(cube_roots_and_trisections_need_no_library_rounding) {
+    double worst = 0;
+    for (int e = -150; e <= 48; ++e)
+        for (const double m : {1.0, 1.1, 1.5, 1.9, 2.0, 3.7, 5.0, 7.99}) {
+            for (const double sign : {1.0, -1.0}) {
+                const double a = sign * std::ldexp(m, e);
+                const Roots r = solve_cubic(1, 0, 0, -a);
+                CHECK_EQ(r.count, 1);
+                if (r.count != 1) continue;
+                const double exact = std::cbrt(a);
+                worst = std::max(worst, std::fabs(r[0] - exact) / std::fabs(exact));
+            }
+        }
+    CHECK(worst <= 2 * std::numeric_limits<double>::epsilon());
+    for (const double scale : {1e-30, 1e-3, 1.0, 7.0, 1e3, 1e30}) {
+        const double a = scale, b = 2 * scale, c = 3 * scale;
+        // (x - a)(x - b)(x - c) = x^3 - 6s x^2 + 11 s^2 x - 6 s^3, s = scale.
+        const Roots r = solve_cubic(1, -(a + b + c), a * b + b * c + a * c, -(a * b * c));
+        CHECK_EQ(r.count, 3);
+        if (r.count != 3) continue;
+        // Condition numbers 12, 30 and 20 (sum |c_i x^i| / |x p'(x)|): a few eps times those.
+        CHECK_NEAR(r[0] / a, 1, 4 * 12 * std::numeric_limits<double>::epsilon());
+        CHECK_NEAR(r[1] / b, 1, 4 * 30 * std::numeric_limits<double>::epsilon());
+        CHECK_NEAR(r[2] / c, 1, 4 * 20 * std::numeric_limits<double>::epsilon());
+    }
+}

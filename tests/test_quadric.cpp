@@ -543,6 +543,58 @@ TEST(bounds_are_tight_for_an_ellipsoid) {
     }
 }
 
+// The ellipsoid's extent is worked out in double-double arithmetic on std::fma (not long
+// double, whose width differs between x86-64 and arm64), with Q, g and J scaled by a power of
+// two first. So an ellipsoid 10^6 from the origin keeps a tight box, and multiplying every
+// coefficient by 2^±600 (a product of two would overflow or vanish in a double) does not
+// change the box by a bit; beyond a double's range altogether, the clip box bounds it.
+TEST(far_and_scaled_ellipsoids_keep_their_box_on_every_machine) {
+    Random random(2106);
+    for (int i = 0; i < 200; ++i) {
+        const Vec3 axes{random.uniform(0.2, 3), random.uniform(0.2, 3), random.uniform(0.2, 3)};
+        const Vec3 c = 1e6 * random.unit_vector();
+        const Rotation rot = random_rotation(random);
+        Spec spec = place({1 / (axes.x * axes.x), 1 / (axes.y * axes.y), 1 / (axes.z * axes.z)}, {},
+                          -1, c, rot);
+        spec.min = c - Vec3{10, 10, 10};
+        spec.max = c + Vec3{10, 10, 10};
+        const Shape shape = spec.shape();
+        const Bounds b = shape.bounds();
+        for (int k = 0; k < 3; ++k) {
+            const double half =
+                std::hypot(rot.c0[k] * axes.x, rot.c1[k] * axes.y, rot.c2[k] * axes.z);
+            // The coefficients as written carry the level f = -1 only to the rounding of J (about
+            // 1e12 here), eps |J|, which moves the half-width by half of that, relatively.
+            const double slack =
+                half * (1e-9 + 4 * std::numeric_limits<double>::epsilon() * std::fabs(spec.k[9]));
+            CHECK_NEAR(b.min[k], c[k] - half, slack);
+            CHECK_NEAR(b.max[k], c[k] + half, slack);
+        }
+        const Ray ray{c + 20 * random.unit_vector(), {}};
+        const Ray aimed{ray.origin, normalized(c + random.in_box(0.1) - ray.origin)};
+        for (const int power : {-600, -300, 300, 600}) {
+            Spec scaled = spec;
+            for (double& k : scaled.k) k = std::ldexp(k, power);
+            const Shape other = scaled.shape();
+            const Bounds ob = other.bounds();
+            CHECK(ob.min == b.min && ob.max == b.max);
+            // Rays see it alike while their own quadratic stays in range (2^±300).
+            if (std::abs(power) > 300) continue;
+            Hit h1, h2;
+            CHECK(shape.intersect(aimed, {1e-9, kInfinity}, h1));
+            CHECK(other.intersect(aimed, {1e-9, kInfinity}, h2));
+            CHECK_NEAR(h2.t, h1.t, 1e-9 * h1.t);
+        }
+    }
+    // Coefficients whose centre lies beyond a double: bounded by the clip box.
+    Spec huge;
+    huge.k = {1, 1, 1, 0, 0, 0, -1e300, 0, 0, 1e300};
+    huge.min = {-1, -1, -1};
+    huge.max = {1, 1, 1};
+    const Bounds hb = huge.shape().bounds();
+    CHECK(hb.min == huge.min && hb.max == huge.max);
+}
+
 TEST(bounds_hold_sampled_points_of_unbounded_forms) {
     // A hyperboloid of one sheet, clipped: every point of it in the clip box is in bounds.
     Spec spec = place({1, 1, -1}, {}, -1, {});

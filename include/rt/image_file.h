@@ -51,6 +51,10 @@ ImageFile decode_ppm(std::string_view file, PpmSamples samples = PpmSamples::res
 // PFM colour ("PF") or grey ("Pf", which becomes RGB), either byte order.
 ImageFile decode_pfm(std::string_view file);
 
+// Whether a metadata key can be a PPM comment's ("# Key: value"): not empty, and no spaces
+// or control characters, so that it reads back as it was written and ends no line.
+bool ppm_key(std::string_view key);
+
 // Plain-text PPM (P3) or PGM (P2), with the metadata as comments like encode_ppm's.
 std::string encode_ppm_plain(const SampleImage& image, const ImageMetadata& metadata);
 

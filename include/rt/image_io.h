@@ -47,6 +47,12 @@ double encode_gamma(double c, const Gamma& gamma);
 struct ImageMetadata {
     std::vector<std::pair<std::string, std::string>> entries;
 
+    // The most records a file read may carry (text chunks, or "# Key: value" comments), and
+    // the most bytes of text they may hold in all once unpacked: a file beyond either is
+    // refused, so that no small file makes reading its metadata slow or large.
+    static constexpr std::size_t kMaxEntries = 1024;
+    static constexpr std::size_t kMaxBytes = std::size_t{16} << 20;
+
     // Replaces the key's value, or adds the key at the end.
     void set(std::string_view key, std::string value);
     const std::string* find(std::string_view key) const;

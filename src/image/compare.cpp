@@ -15,13 +15,43 @@ void require_same_size(const ImageFile& a, const ImageFile& b) {
         throw std::invalid_argument("images of different sizes");
 }
 
+// How far apart two components are, in levels. A NaN (in a PFM) is a difference from any
+// number, an infinite one, so that no comparison passes it; two NaNs are alike, as two equal
+// numbers are (the renders agree on where the value is undefined), and so are two equal
+// infinities, whose subtraction alone would give NaN.
+double component_difference(double a, double b) {
+    if (a == b) return 0;
+    const bool a_nan = std::isnan(a), b_nan = std::isnan(b);
+    if (a_nan || b_nan) return a_nan && b_nan ? 0 : std::numeric_limits<double>::infinity();
+    return std::fabs(a - b);
+}
+
 // The largest component difference of pixel (x, y), in levels.
 double pixel_difference(const ImageFile& a, const ImageFile& b, int x, int y) {
     double largest = 0;
     for (int c = 0; c < 3; ++c)
-        largest = std::max(largest, std::fabs(a.level(x, y, c) - b.level(x, y, c)));
+        largest = std::max(largest, component_difference(a.level(x, y, c), b.level(x, y, c)));
     return largest;
 }
+
+// A sum in double that keeps what each addition rounds off (Neumaier's compensation), so that
+// millions of terms lose nothing that shows, the same way on every machine.
+class Sum {
+  public:
+    void add(double v) {
+        const double t = total_ + v;
+        compensation_ += std::fabs(total_) >= std::fabs(v) ? (total_ - t) + v : (v - t) + total_;
+        total_ = t;
+    }
+    double value() const {
+        const double v = total_ + compensation_;
+        return std::isnan(v) ? total_ : v;  // inf - inf in the compensation is no NaN
+    }
+
+  private:
+    double total_ = 0;
+    double compensation_ = 0;
+};
 
 }  // namespace
 
@@ -29,23 +59,22 @@ ImageDifference compare_images(const ImageFile& a, const ImageFile& b, double to
     require_same_size(a, b);
     ImageDifference d;
     d.pixels = static_cast<std::size_t>(a.width()) * static_cast<std::size_t>(a.height());
-    // Sums in long double, row by row, so that 4096^2 images lose nothing to rounding.
-    long double sum = 0, sum_squares = 0;
+    Sum sum, sum_squares;
     for (int y = 0; y < a.height(); ++y)
         for (int x = 0; x < a.width(); ++x) {
             double pixel = 0;
             for (int c = 0; c < 3; ++c) {
-                const double diff = std::fabs(a.level(x, y, c) - b.level(x, y, c));
+                const double diff = component_difference(a.level(x, y, c), b.level(x, y, c));
                 pixel = std::max(pixel, diff);
-                sum += diff;
-                sum_squares += static_cast<long double>(diff) * diff;
+                sum.add(diff);
+                sum_squares.add(diff * diff);
             }
             d.largest = std::max(d.largest, pixel);
             if (pixel > tolerance) ++d.differing;
         }
-    const long double components = 3.0L * static_cast<long double>(d.pixels);
-    d.mean_absolute = static_cast<double>(sum / components);
-    d.rms = static_cast<double>(std::sqrt(sum_squares / components));
+    const double components = 3.0 * static_cast<double>(d.pixels);
+    d.mean_absolute = sum.value() / components;
+    d.rms = std::sqrt(sum_squares.value() / components);
     d.psnr = d.rms == 0 ? std::numeric_limits<double>::infinity() : 20 * std::log10(255 / d.rms);
     return d;
 }

@@ -5,6 +5,7 @@
 
 #include "rt/error.h"
 #include "rt/image_merge.h"
+#include "rt/limits.h"
 
 namespace rt {
 
@@ -135,6 +136,11 @@ std::optional<RecordedRegion> recorded_region(const ImageFile& image) {
     const auto r = numbers(*region, ',', 4);
     const auto s = numbers(*size, 'x', 2);
     if (!r || !s) throw Error("has a malformed Region or Full-Size record");
+    // The full image is allocated from this record, so it is held to the size any image read
+    // may have before anything else is done with it.
+    if (static_cast<long long>((*s)[0]) * (*s)[1] > kMaxImagePixels)
+        throw Error("records a full size (" + *size + ") larger than " +
+                    std::to_string(kMaxImagePixels) + " pixels");
     RecordedRegion out{{(*r)[0], (*r)[2], (*r)[1], (*r)[3]}, (*s)[0], (*s)[1]};
     if (out.rect.empty() || !PixelRect{0, 0, out.full_width, out.full_height}.contains(out.rect))
         throw Error("records a region (" + *region + ") outside its full image (" + *size + ")");

@@ -1,9 +1,11 @@
 // PFM input: colour (PF) or grey (Pf) 32-bit floats, either byte order, rows from the bottom.
 #include <bit>
 #include <charconv>
+#include <cmath>
 #include <cstring>
 
 #include "common/ascii.h"
+#include "common/message_text.h"
 #include "rt/error.h"
 #include "rt/image_file.h"
 #include "rt/limits.h"
@@ -41,11 +43,16 @@ ImageFile decode_pfm(std::string_view file) {
     if (magic != "PF" && magic != "Pf") throw Error("not a PFM file (expected PF or Pf)");
     const int width = parse<int>(field(file, at), "width");
     const int height = parse<int>(field(file, at), "height");
-    const double scale = parse<double>(field(file, at), "scale");
+    const std::string_view text_of_scale = field(file, at);
+    const double scale = parse<double>(text_of_scale, "scale");
     if (width < 1 || height < 1) throw Error("PFM image has no pixels");
     if (static_cast<long>(width) * height > kMaxImagePixels)
         throw Error("PFM image is larger than " + std::to_string(kMaxImagePixels) + " pixels");
-    if (scale == 0) throw Error("PFM scale must not be 0");
+    // The scale's sign gives the byte order, so only a finite number other than 0 is one (a
+    // NaN has no sign to trust).
+    if (!std::isfinite(scale) || scale == 0)
+        throw Error("PFM scale must be a finite number other than 0, got " +
+                    std::string(quote_token(text_of_scale, 40)));
     const bool little = scale < 0;
     const int stored = magic == "PF" ? 3 : 1;
     const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);

@@ -2,10 +2,12 @@
 // deflate in IDAT chunks, IEND.
 #include <array>
 #include <cstdlib>
+#include <optional>
 #include <vector>
 
-#include "png_format.h"
+#include "common/message_text.h"
 #include "image/deflate.h"
+#include "png_format.h"
 #include "rt/error.h"
 #include "rt/image_io.h"
 
@@ -29,23 +31,43 @@ void put_chunk(std::string& out, std::string_view type, std::string_view body) {
     put_u32(out, crc32(body, crc32(type)));
 }
 
-// PNG keywords: 1-79 printable Latin-1 characters, no leading, trailing or double spaces.
-bool valid_keyword(std::string_view key) {
-    if (key.empty() || key.size() > 79 || key.front() == ' ' || key.back() == ' ') return false;
-    for (std::size_t i = 0; i < key.size(); ++i) {
-        const auto c = static_cast<unsigned char>(key[i]);
-        if (c < 32 || (c > 126 && c < 161)) return false;
-        if (c == ' ' && key[i + 1] == ' ') return false;
+// UTF-8 text (the metadata's) as Latin-1 (a PNG keyword's), or nothing when it holds a
+// character beyond U+00FF or is not UTF-8.
+std::optional<std::string> utf8_to_latin1(std::string_view text) {
+    std::string out;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const auto c = static_cast<unsigned char>(text[i]);
+        if (c < 0x80) {
+            out.push_back(static_cast<char>(c));
+            continue;
+        }
+        // Only the two-byte sequences C2 80 to C3 BF encode U+0080 to U+00FF.
+        if ((c != 0xC2 && c != 0xC3) || i + 1 >= text.size()) return std::nullopt;
+        const auto next = static_cast<unsigned char>(text[i + 1]);
+        if ((next & 0xC0) != 0x80) return std::nullopt;
+        out.push_back(static_cast<char>((c & 0x03) << 6 | (next & 0x3F)));
+        ++i;
     }
-    return true;
+    return out;
 }
 
+// A text record as a tEXt chunk, or an iTXt one when its value is not plain ASCII. The key is
+// written in Latin-1, as the reader reads it, so that every keyword a PNG can hold survives a
+// round trip; a key no PNG keyword can be, or a value holding a NUL (which would end it), is
+// refused rather than changed.
 void put_text(std::string& out, const std::string& key, const std::string& value) {
-    if (!valid_keyword(key)) throw Error("'" + key + "' cannot be a PNG text keyword");
-    std::string body = key;
+    const std::optional<std::string> keyword = utf8_to_latin1(key);
+    if (!keyword || !valid_keyword(*keyword))
+        throw Error(quote_token(key, kShowWhole) +
+                    " cannot be a PNG text keyword (1 to 79 printable Latin-1 characters, no "
+                    "leading, trailing or double spaces)");
+    if (value.find('\0') != std::string::npos)
+        throw Error("the value of " + quote_token(key, kShowWhole) +
+                    " holds a NUL character, which PNG text cannot");
+    std::string body = *keyword;
     body.push_back('\0');
     bool ascii = true;
-    for (const char c : value) ascii = ascii && static_cast<unsigned char>(c) < 128 && c != '\0';
+    for (const char c : value) ascii = ascii && static_cast<unsigned char>(c) < 128;
     if (ascii) {
         body += value;
         put_chunk(out, "tEXt", body);
@@ -54,8 +76,7 @@ void put_text(std::string& out, const std::string& key, const std::string& value
     // tEXt is Latin-1; anything else (a file name in UTF-8) goes in an uncompressed iTXt,
     // with no language tag and no translated keyword.
     body.append(std::string_view("\0\0\0\0", 4));
-    for (const char c : value)
-        if (c != '\0') body.push_back(c);
+    body += value;
     put_chunk(out, "iTXt", body);
 }
 

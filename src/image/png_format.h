@@ -16,6 +16,18 @@ inline constexpr int kPalette = 3;
 inline constexpr int kGreyAlpha = 4;
 inline constexpr int kRgbAlpha = 6;
 
+// A keyword as the PNG specification allows it, in Latin-1 (the bytes of the file): 1-79
+// printable characters (32-126 and 161-255), no leading, trailing or double spaces.
+inline bool valid_keyword(std::string_view key) {
+    if (key.empty() || key.size() > 79 || key.front() == ' ' || key.back() == ' ') return false;
+    for (std::size_t i = 0; i < key.size(); ++i) {
+        const auto c = static_cast<unsigned char>(key[i]);
+        if (c < 32 || (c > 126 && c < 161)) return false;
+        if (c == ' ' && i + 1 < key.size() && key[i + 1] == ' ') return false;
+    }
+    return true;
+}
+
 // Filter types 0-4: none, sub, up, average, Paeth.
 inline constexpr int kFilterTypes = 5;
 

@@ -2,6 +2,7 @@
 #include <array>
 #include <vector>
 
+#include "common/message_text.h"
 #include "image/deflate.h"
 #include "png_format.h"
 #include "rt/error.h"
@@ -14,16 +15,16 @@ namespace {
 
 using namespace png_format;
 
-// A compressed text chunk may not unpack to more than this.
-constexpr std::size_t kMaxTextSize = std::size_t{1} << 24;
-
 std::uint32_t get_u32(std::string_view s, std::size_t at) {
     std::uint32_t v = 0;
     for (std::size_t i = 0; i < 4; ++i) v = v << 8 | static_cast<unsigned char>(s[at + i]);
     return v;
 }
 
-// tEXt and zTXt hold Latin-1; metadata is UTF-8.
+// A chunk type as messages show it: its four bytes, any that are not printable escaped.
+std::string shown(std::string_view type) { return show_token(type, kShowWhole); }
+
+// tEXt and zTXt hold Latin-1, as does every keyword; metadata is UTF-8.
 std::string latin1_to_utf8(std::string_view text) {
     std::string out;
     for (const char ch : text) {
@@ -38,23 +39,53 @@ std::string latin1_to_utf8(std::string_view text) {
     return out;
 }
 
-// Splits "keyword\0rest"; throws when there is no terminator.
+// What the text chunks read so far have taken of the metadata's bounds.
+struct TextBudget {
+    std::size_t entries = 0;
+    std::size_t bytes = 0;
+};
+
+// Splits "keyword\0rest", the keyword as the specification allows it; throws otherwise.
 std::pair<std::string_view, std::string_view> split_keyword(std::string_view body,
                                                             std::string_view type) {
     const std::size_t nul = body.find('\0');
-    if (nul == std::string_view::npos || nul == 0 || nul > 79)
-        throw Error("PNG " + std::string(type) + " chunk has no valid keyword");
-    return {body.substr(0, nul), body.substr(nul + 1)};
+    if (nul == std::string_view::npos)
+        throw Error("PNG " + shown(type) + " chunk has no keyword ending in a NUL");
+    const std::string_view keyword = body.substr(0, nul);
+    if (!valid_keyword(keyword))
+        throw Error("PNG " + shown(type) + " chunk has an invalid keyword " +
+                    quote_token(keyword, 80) +
+                    " (1 to 79 printable Latin-1 characters, no leading, trailing or double "
+                    "spaces)");
+    return {keyword, body.substr(nul + 1)};
 }
 
-void read_text_chunk(std::string_view type, std::string_view body, ImageMetadata& metadata) {
-    const auto [keyword, rest] = split_keyword(body, type);
+void read_text_chunk(std::string_view type, std::string_view body, ImageMetadata& metadata,
+                     TextBudget& budget) {
+    if (++budget.entries > ImageMetadata::kMaxEntries)
+        throw Error("PNG file has more than " + std::to_string(ImageMetadata::kMaxEntries) +
+                    " text chunks");
+    // Plain names rather than a structured binding, which clang 14's lambdas cannot capture.
+    const auto split = split_keyword(body, type);
+    const std::string_view keyword = split.first, rest = split.second;
+    // What is left of the bound on all text: a compressed chunk may unpack to no more.
+    const std::size_t room = ImageMetadata::kMaxBytes - budget.bytes;
+    // A chunk that would unpack past what is left is refused with the bound in all named.
+    const auto unpack = [&](std::string_view data) {
+        try {
+            return zlib_decompress(data, room);
+        } catch (const Error& e) {
+            throw Error("PNG " + shown(type) + " chunk " + quote_token(keyword, 80) + ": " +
+                        e.what() + "; the text chunks may hold " +
+                        std::to_string(ImageMetadata::kMaxBytes) + " bytes in all");
+        }
+    };
+    std::string text;
     if (type == "tEXt") {
-        metadata.set(latin1_to_utf8(keyword), latin1_to_utf8(rest));
+        text = latin1_to_utf8(rest);
     } else if (type == "zTXt") {
         if (rest.empty() || rest[0] != 0) throw Error("PNG zTXt chunk has an unknown compression");
-        metadata.set(latin1_to_utf8(keyword),
-                     latin1_to_utf8(zlib_decompress(rest.substr(1), kMaxTextSize)));
+        text = latin1_to_utf8(unpack(rest.substr(1)));
     } else {  // iTXt: flag, method, language tag, translated keyword, text
         if (rest.size() < 2) throw Error("PNG iTXt chunk is too short");
         const bool compressed = rest[0] != 0;
@@ -64,9 +95,19 @@ void read_text_chunk(std::string_view type, std::string_view body, ImageMetadata
             if (nul == std::string_view::npos) throw Error("PNG iTXt chunk is malformed");
             tail = tail.substr(nul + 1);
         }
-        metadata.set(latin1_to_utf8(keyword),
-                     compressed ? zlib_decompress(tail, kMaxTextSize) : std::string(tail));
+        text = compressed ? unpack(tail) : std::string(tail);
     }
+    // A NUL cannot be written back (it would end the text), so it is refused, not dropped.
+    if (text.find('\0') != std::string::npos)
+        throw Error("PNG " + shown(type) + " chunk " + quote_token(keyword, 80) +
+                    " has a NUL character in its text");
+    std::string key = latin1_to_utf8(keyword);
+    budget.bytes += key.size();
+    if (text.size() > ImageMetadata::kMaxBytes - budget.bytes)
+        throw Error("PNG file's text chunks hold more than " +
+                    std::to_string(ImageMetadata::kMaxBytes) + " bytes in all");
+    budget.bytes += text.size();
+    metadata.set(key, std::move(text));
 }
 
 struct Header {
@@ -155,15 +196,16 @@ DecodedImage decode_png(std::string_view file) {
     std::string_view palette;
     std::string_view transparency;
     std::string compressed;
+    TextBudget text_budget;
     for (std::size_t at = kSignature.size(); !have_end;) {
         if (file.size() - at < 12) throw Error("PNG file ends before its IEND chunk");
         const std::uint32_t length = get_u32(file, at);
         const std::string_view type = file.substr(at + 4, 4);
         if (length > 0x7FFFFFFFu || file.size() - at - 12 < length)
-            throw Error("PNG " + std::string(type) + " chunk runs past the end of the file");
+            throw Error("PNG " + shown(type) + " chunk runs past the end of the file");
         const std::string_view body = file.substr(at + 8, length);
         if (get_u32(file, at + 8 + length) != crc32(body, crc32(type)))
-            throw Error("PNG " + std::string(type) + " chunk has a wrong CRC");
+            throw Error("PNG " + shown(type) + " chunk has a wrong CRC");
         at += 12 + length;
         if (!have_header && type != "IHDR") throw Error("PNG file does not start with IHDR");
         if (type == "IHDR") {
@@ -181,10 +223,10 @@ DecodedImage decode_png(std::string_view file) {
         } else if (type == "IEND") {
             have_end = true;
         } else if (type == "tEXt" || type == "zTXt" || type == "iTXt") {
-            read_text_chunk(type, body, result.metadata);
+            read_text_chunk(type, body, result.metadata, text_budget);
         } else if (!(static_cast<unsigned char>(type[0]) & 0x20)) {
             // A lower-case first letter marks a chunk a reader may ignore; this one is not.
-            throw Error("PNG file has an unknown critical chunk " + std::string(type));
+            throw Error("PNG file has an unknown critical chunk " + shown(type));
         }
     }
     if (h.colour == kPalette && palette.empty()) throw Error("PNG palette image has no PLTE");

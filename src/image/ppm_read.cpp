@@ -52,20 +52,24 @@ class Cursor {
             }
         }
     }
-    // "# Key: value", as encode_ppm writes; other comments are not metadata.
+    // "# Key: value", as encode_ppm writes; other comments are not metadata. A key has no
+    // spaces or control characters, which encode_ppm refuses to write.
     void keep_comment(std::string_view text) {
         if (!text.empty() && text[0] == ' ') text.remove_prefix(1);
         if (!text.empty() && text.back() == '\r') text.remove_suffix(1);
         const std::size_t colon = text.find(": ");
-        if (colon == std::string_view::npos || colon == 0 ||
-            text.substr(0, colon).find(' ') != std::string_view::npos)
+        if (colon == std::string_view::npos || colon == 0 || !ppm_key(text.substr(0, colon)))
             return;
+        if (++entries_ > ImageMetadata::kMaxEntries)
+            throw Error("PPM header has more than " + std::to_string(ImageMetadata::kMaxEntries) +
+                        " metadata comments");
         metadata_->set(text.substr(0, colon), std::string(text.substr(colon + 2)));
     }
 
     std::string_view s_;
     ImageMetadata* metadata_;
     std::size_t at_ = 2;  // after the magic number
+    std::size_t entries_ = 0;
 };
 
 }  // namespace

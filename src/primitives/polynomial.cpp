@@ -82,6 +82,50 @@ struct Polynomial {
     }
 };
 
+// The solver uses no function of the C library that is not correctly rounded: cbrt, cos and
+// acos round their last bit differently from one machine (and one build of the library) to
+// the next, and a root that starts one bit apart can polish to another double. What it uses
+// instead is built from +, -, *, / and sqrt, which IEEE 754 rounds alike everywhere, and from
+// frexp and ldexp, which are exact.
+
+// Newton steps for the cube root of a number in [0.5, 4) from the line through its ends:
+// the first guess is within 10 %, so five steps reach rounding; the sixth settles it.
+constexpr int kCubeRootSteps = 6;
+
+// The real cube root of x, the same on every IEEE machine.
+double cube_root(double x) {
+    if (x == 0 || !std::isfinite(x)) return x;
+    int exponent = 0;
+    const double mantissa = std::frexp(std::fabs(x), &exponent);  // in [0.5, 1)
+    // |x| = m 2^(3k) with m in [0.5, 4): the cube root is cbrt(m) 2^k.
+    int rest = exponent % 3;
+    if (rest < 0) rest += 3;
+    const double m = std::ldexp(mantissa, rest);
+    const int k = (exponent - rest) / 3;
+    double y = 0.69 + 0.23 * m;
+    for (int step = 0; step < kCubeRootSteps; ++step) y -= (y * y * y - m) / (3 * y * y);
+    return std::copysign(std::ldexp(y, k), x);
+}
+
+// Newton steps for cos(acos(c) / 3) from 1; they descend monotonically (see below) and reach
+// rounding within six.
+constexpr int kTrisectionSteps = 12;
+
+// cos(acos(c) / 3) for c in [0, 1], without cos or acos: by the triple-angle formula
+// cos(3 theta) = 4 cos^3(theta) - 3 cos(theta), it is the largest root y of 4 y^3 - 3 y = c,
+// which lies in [cos(30 degrees), 1]. There the cubic is convex with slope at least 6, so
+// Newton's method from 1 (where the cubic is 1 - c >= 0) falls monotonically onto the root;
+// it stops when a step no longer descends.
+double trisected_cosine(double c) {
+    double y = 1;
+    for (int step = 0; step < kTrisectionSteps; ++step) {
+        const double next = y - (y * (4 * y * y - 3) - c) / (12 * y * y - 3);
+        if (!(next < y)) break;
+        y = next;
+    }
+    return y;
+}
+
 void add_root(Roots& roots, double x) {
     if (roots.count < Roots::kCapacity && std::isfinite(x))
         roots.values[static_cast<std::size_t>(roots.count++)] = x;
@@ -164,11 +208,11 @@ void add_cubic_roots(const Polynomial& p, Roots& roots) {
         // Three real roots (p3 < 0): t = 2 s cos(theta) with cos(3 theta) = -half_q / s^3.
         const double s = std::sqrt(-p3);
         const double cos_3theta = std::min(1.0, std::fabs(half_q) / (s * s * s));
-        t = -std::copysign(2 * s * std::cos(std::acos(cos_3theta) / 3), half_q);
+        t = -std::copysign(2 * s * trisected_cosine(cos_3theta), half_q);
     } else {
         // Cardano, with the cube root of larger magnitude so that u - p3/u does not cancel.
         const double u =
-            -std::copysign(std::cbrt(std::fabs(half_q) + std::sqrt(discriminant)), half_q);
+            -std::copysign(cube_root(std::fabs(half_q) + std::sqrt(discriminant)), half_q);
         t = u != 0 ? u - p3 / u : 0;
     }
     const double r = polish(p, t - third);

@@ -6,6 +6,7 @@
 // In matrix form f(x) = xᵀQx + 2g·x + J. rt stores f about a point p0 at the centre of the
 // visible surface's bounds, f(p0 + y) = yᵀQy + 2(Qp0 + g)·y + f(p0), so the large terms of a
 // quadric far from the world's origin cancel once, when the scene is read, not on every ray.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -48,6 +49,73 @@ constexpr double kDefiniteMargin = 1e-9;
 // The ellipsoid's computed extent is widened by this fraction of its size and distance from
 // the origin, for rounding (the hierarchy widens every box by 1e-9 more).
 constexpr double kExtentPad = 1e-10;
+
+// Double-double arithmetic: a value as the unevaluated sum hi + lo of two doubles (about 106
+// bits), built from error-free transformations on std::fma, which rounds alike on every IEEE
+// target. (long double would not: it is 80-bit x87 on x86-64 and 128-bit IEEE on arm64, and
+// so gave different images of a quadric far from the origin.) Values that overflow a double
+// keep their infinite hi and a lo of 0, so no NaN arises from the error terms.
+struct Wide {
+    double hi = 0;
+    double lo = 0;
+
+    Wide() = default;
+    Wide(double v) : hi(v) {}  // NOLINT: a double is a Wide exactly
+    Wide(double h, double l) : hi(h), lo(l) {}
+    double value() const { return std::isfinite(hi) ? hi + lo : hi; }
+};
+
+// hi + lo exactly, with |a| >= |b| or a == 0.
+Wide quick_two_sum(double a, double b) {
+    const double s = a + b;
+    if (!std::isfinite(s)) return {s, 0};
+    return {s, b - (s - a)};
+}
+
+Wide two_sum(double a, double b) {
+    const double s = a + b;
+    if (!std::isfinite(s)) return {s, 0};
+    const double bb = s - a;
+    return {s, (a - (s - bb)) + (b - bb)};
+}
+
+Wide operator+(const Wide& a, const Wide& b) {
+    Wide s = two_sum(a.hi, b.hi);
+    const Wide t = two_sum(a.lo, b.lo);
+    s = quick_two_sum(s.hi, s.lo + t.hi);
+    return quick_two_sum(s.hi, s.lo + t.lo);
+}
+Wide operator-(const Wide& a) { return {-a.hi, -a.lo}; }
+Wide operator-(const Wide& a, const Wide& b) { return a + -b; }
+
+Wide operator*(const Wide& a, const Wide& b) {
+    const double p = a.hi * b.hi;
+    if (!std::isfinite(p)) return {p, 0};
+    const double e = std::fma(a.hi, b.hi, -p) + (a.hi * b.lo + a.lo * b.hi);
+    return quick_two_sum(p, e);
+}
+
+Wide operator/(const Wide& a, const Wide& b) {
+    const double q1 = a.hi / b.hi;
+    if (!std::isfinite(q1)) return {q1, 0};
+    const Wide r = a - b * q1;
+    const double q2 = r.hi / b.hi;
+    const Wide r2 = r - b * q2;
+    return quick_two_sum(q1, q2) + r2.hi / b.hi;
+}
+
+// The square root of a >= 0: the double root, then one Newton correction.
+Wide sqrt(const Wide& a) {
+    if (!(a.hi > 0)) return std::sqrt(a.hi);  // 0, or NaN for a negative value
+    const double x = std::sqrt(a.hi);
+    if (!std::isfinite(x)) return {x, 0};
+    return two_sum(x, (a - Wide(x) * x).hi / (2 * x));
+}
+
+bool operator<(const Wide& a, const Wide& b) {
+    return a.hi < b.hi || (a.hi == b.hi && a.lo < b.lo);
+}
+bool operator>(const Wide& a, const Wide& b) { return b < a; }
 
 Vec3 with_component(Vec3 v, int axis, double value) {
     (axis == 0 ? v.x : axis == 1 ? v.y : v.z) = value;
@@ -105,8 +173,10 @@ bool visible_at(const Quadric& s, const Ray& ray, double t) {
 }
 
 // The box of an ellipsoid: when Q is definite, the surface f = 0 is bounded, and so is one
-// side of it. Worked out in long double: for an ellipsoid far from the origin, g·c and J
-// nearly cancel.
+// side of it. Worked out in double-double: for an ellipsoid far from the origin, g·c and J
+// nearly cancel. Q, g and J are first scaled by a power of two (exactly) so that Q's largest
+// entry is near 1, which changes neither the surface nor any ratio below, and keeps the
+// products of Q's entries from overflowing.
 struct Extent {
     bool definite = false;
     bool solid_inside = false;  // f < 0 is the ellipsoid's interior (Q positive definite)
@@ -115,32 +185,47 @@ struct Extent {
     Vec3 centre;
 };
 
-Extent ellipsoid_extent(const Symmetric& q, const Vec3& g, double j) {
-    using Wide = long double;
+Extent ellipsoid_extent(const Symmetric& unscaled_q, const Vec3& unscaled_g, double unscaled_j) {
     Extent extent;
-    const Wide xx = q.xx, yy = q.yy, zz = q.zz, xy = q.xy, xz = q.xz, yz = q.yz;
+    const double largest =
+        std::max({std::fabs(unscaled_q.xx), std::fabs(unscaled_q.yy), std::fabs(unscaled_q.zz),
+                  std::fabs(unscaled_q.xy), std::fabs(unscaled_q.xz), std::fabs(unscaled_q.yz)});
+    if (!(largest > 0)) return extent;
+    const int exponent = std::ilogb(largest);
+    const auto scaled = [&](double v) { return std::scalbn(v, -exponent); };
+    const Wide xx = scaled(unscaled_q.xx), yy = scaled(unscaled_q.yy), zz = scaled(unscaled_q.zz),
+               xy = scaled(unscaled_q.xy), xz = scaled(unscaled_q.xz), yz = scaled(unscaled_q.yz);
+    const Wide gx = scaled(unscaled_g.x), gy = scaled(unscaled_g.y), gz = scaled(unscaled_g.z);
+    const Wide j = scaled(unscaled_j);
     // The adjugate of Q (Q⁻¹ = adjugate / det).
     const Wide adj_xx = yy * zz - yz * yz, adj_yy = xx * zz - xz * xz, adj_zz = xx * yy - xy * xy;
     const Wide adj_xy = xz * yz - xy * zz, adj_xz = xy * yz - yy * xz, adj_yz = xy * xz - xx * yz;
     const Wide det = xx * adj_xx + xy * adj_xy + xz * adj_xz;
     // Sylvester's criterion; then det / |Q|³ bounds the ratio of the extreme eigenvalues.
-    const Wide sign = xx > 0 ? 1 : -1;
-    const Wide norm = std::sqrt(xx * xx + yy * yy + zz * zz + 2 * (xy * xy + xz * xz + yz * yz));
-    extent.definite = xx != 0 && adj_zz > 0 && sign * det > kDefiniteMargin * norm * norm * norm;
+    const double sign = xx.hi > 0 ? 1 : -1;
+    const Wide norm = sqrt(xx * xx + yy * yy + zz * zz + Wide(2) * (xy * xy + xz * xz + yz * yz));
+    extent.definite = xx.hi != 0 && adj_zz > Wide(0) &&
+                      Wide(sign) * det > Wide(kDefiniteMargin) * norm * norm * norm;
     if (!extent.definite) return extent;
     extent.solid_inside = sign > 0;
     // The centre c = −Q⁻¹g, where f(x) = (x−c)ᵀQ(x−c) + f(c) and f(c) = g·c + J.
-    const Wide cx = -(adj_xx * g.x + adj_xy * g.y + adj_xz * g.z) / det;
-    const Wide cy = -(adj_xy * g.x + adj_yy * g.y + adj_yz * g.z) / det;
-    const Wide cz = -(adj_xz * g.x + adj_yz * g.y + adj_zz * g.z) / det;
+    const Wide cx = -(adj_xx * gx + adj_xy * gy + adj_xz * gz) / det;
+    const Wide cy = -(adj_xy * gx + adj_yy * gy + adj_yz * gz) / det;
+    const Wide cz = -(adj_xz * gx + adj_yz * gy + adj_zz * gz) / det;
     // sign·Q is positive definite, so the surface is (x−c)ᵀ(sign·Q)(x−c) = k.
-    const Wide k = -sign * (g.x * cx + g.y * cy + g.z * cz + j);
-    extent.centre = {static_cast<double>(cx), static_cast<double>(cy), static_cast<double>(cz)};
-    extent.empty = k < 0;
+    const Wide k = -(Wide(sign) * (gx * cx + gy * cy + gz * cz + j));
+    extent.centre = {cx.value(), cy.value(), cz.value()};
+    // A centre or level beyond a double's range: the clip box bounds the surface instead.
+    if (!std::isfinite(extent.centre.x) || !std::isfinite(extent.centre.y) ||
+        !std::isfinite(extent.centre.z) || !std::isfinite(k.hi)) {
+        extent.definite = false;
+        return extent;
+    }
+    extent.empty = k < Wide(0);
     if (extent.empty) return extent;
     const Wide diagonal[3] = {adj_xx, adj_yy, adj_zz};
     for (int axis = 0; axis < 3; ++axis) {
-        const double half = static_cast<double>(std::sqrt(k * sign * diagonal[axis] / det));
+        const double half = sqrt(k * Wide(sign) * diagonal[axis] / det).value();
         const double pad = kExtentPad * (half + std::fabs(extent.centre[axis]));
         extent.box.min = with_component(extent.box.min, axis, extent.centre[axis] - half - pad);
         extent.box.max = with_component(extent.box.max, axis, extent.centre[axis] + half + pad);
@@ -205,17 +290,16 @@ ShapeData read(SceneReader& reader) {
     bool has_visible = true;
     const Bounds bounds = visible_bounds(extent, clip, has_visible);
     const Vec3 p0 = 0.5 * (bounds.min + bounds.max);
-    // Qp0 + g and f(p0) = p0·(Qp0 + 2g) + J in extended precision: for a quadric far from the
+    // Qp0 + g and f(p0) = p0·(Qp0 + 2g) + J in double-double: for a quadric far from the
     // origin their terms nearly cancel.
-    using Wide = long double;
     const Wide px = p0.x, py = p0.y, pz = p0.z;
-    const Wide hx = q.xx * px + q.xy * py + q.xz * pz + g.x;
-    const Wide hy = q.xy * px + q.yy * py + q.yz * pz + g.y;
-    const Wide hz = q.xz * px + q.yz * py + q.zz * pz + g.z;
+    const Wide hx = Wide(q.xx) * px + Wide(q.xy) * py + Wide(q.xz) * pz + g.x;
+    const Wide hy = Wide(q.xy) * px + Wide(q.yy) * py + Wide(q.yz) * pz + g.y;
+    const Wide hz = Wide(q.xz) * px + Wide(q.yz) * py + Wide(q.zz) * pz + g.z;
     const Wide value = px * (hx + g.x) + py * (hy + g.y) + pz * (hz + g.z) + k[9];
-    const Vec3 linear{static_cast<double>(hx), static_cast<double>(hy), static_cast<double>(hz)};
-    return std::make_shared<const Quadric>(Quadric{q, linear, static_cast<double>(value), p0, clip,
-                                                   bounds, has_visible, solid_box(extent)});
+    const Vec3 linear{hx.value(), hy.value(), hz.value()};
+    return std::make_shared<const Quadric>(
+        Quadric{q, linear, value.value(), p0, clip, bounds, has_visible, solid_box(extent)});
 }
 
 bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {

@@ -68,6 +68,8 @@ constexpr int kPolishSteps = 2;
 // A step longer than this fraction of the minor radius is not a polish: at a grazing hit
 // the distance's slope along the ray vanishes and the step is unreliable, so it is skipped.
 constexpr double kMaxPolishFraction = 1e-3;
+// A double's relative rounding, for the slack in comparing a rough root with the range.
+constexpr double kRoundingEpsilon = 0x1p-52;
 
 // Polishes the distance s along the ray from the centred point o (p = o + s d).
 double polish(const Torus& t, const Vec3& o, const Vec3& d, double s) {
@@ -133,23 +135,35 @@ bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
     };
     const Roots roots = solve_polynomial(coefficients);
 
+    // A root straight from the quartic is only as good as its rounding allows (near a
+    // double root, as on a spindle torus whose tube is millions of times its major radius, a
+    // large part of the minor radius); the polished root is the hit. Polishing moves a root
+    // by at most kPolishSteps * kMaxPolishFraction * minor, so only a rough root beyond the
+    // range by more than that (and rounding) is passed over unpolished, and the hit is the
+    // nearest polished root in range. Deciding on rough roots made the answer depend on the
+    // range the caller gave: the hierarchy, which narrows it to the nearest hit so far, and
+    // the linear scan then saw different tori in front.
+    const double margin = 2 * kPolishSteps * kMaxPolishFraction * t.minor +
+                          8 * kRoundingEpsilon * (std::fabs(offset) + t.reach);
     const bool spindle = t.minor >= t.major;
+    bool found = false;
+    double nearest_hit = range.t_max;
     for (double s : roots) {
         const double rough = offset + s * t.reach;
-        if (rough <= range.t_min) continue;
-        if (rough >= range.t_max) return false;
+        if (rough <= range.t_min - margin) continue;
+        if (rough >= nearest_hit + margin) break;  // the roots ascend
         // Roots on the lemon of a spindle torus are inside the solid: not a surface.
         if (spindle) {
             const TubeCoordinates c = tube_coordinates(scaled, o + s * d);
             if (std::fabs(lemon_factor(scaled, c)) < std::fabs(tube_factor(scaled, c))) continue;
         }
         const double polished = offset + polish(t, nearest, d, s * t.reach);
-        if (polished <= range.t_min) continue;
-        if (polished >= range.t_max) return false;
-        hit = {polished, 0};
-        return true;
+        if (!(polished > range.t_min) || !(polished < nearest_hit)) continue;
+        nearest_hit = polished;
+        found = true;
     }
-    return false;
+    if (found) hit = {nearest_hit, 0};
+    return found;
 }
 
 Vec3 normal(const void* shape, const Vec3& point, const Hit&) {

@@ -11,7 +11,8 @@ namespace rtimg {
 namespace {
 
 std::string number(double v) {
-    if (std::isinf(v)) return "inf";
+    // The sign matters: a PSNR of -inf (an infinite difference) is the worst, not the best.
+    if (std::isinf(v)) return v < 0 ? "-inf" : "inf";
     char buffer[32];
     std::snprintf(buffer, sizeof buffer, "%.6g", v);
     return buffer;

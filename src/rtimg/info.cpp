@@ -1,11 +1,14 @@
 // rtimg info FILE: what an image is, what made it, and the range of each channel.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <limits>
+#include <optional>
 
-#include "rt/image_merge.h"
 #include "common/message_text.h"
+#include "rt/error.h"
+#include "rt/image_merge.h"
 #include "rtimg.h"
 
 namespace rtimg {
@@ -38,7 +41,20 @@ int info(const std::vector<std::string>& args) {
               << "size: " << f.width() << "x" << f.height() << "\n"
               << "bit depth: " << f.bits() << (f.format == rt::ImageFormat::pfm ? " (float)" : "")
               << ", " << f.channels() << (f.channels() == 1 ? " channel" : " channels") << "\n";
-    if (const auto region = rt::recorded_region(f))
+    // A malformed record does not keep the image from being described: it is said where the
+    // region goes, and warned about with the file's name.
+    std::optional<rt::RecordedRegion> region;
+    std::string problem;
+    try {
+        region = rt::recorded_region(f);
+    } catch (const rt::Error& e) {
+        problem = e.what();
+    }
+    if (!problem.empty()) {
+        std::cerr << "rtimg: warning: " << rt::printable_message(a.files[0] + " " + problem)
+                  << "\n";
+        std::cout << "region: unreadable (" << shown(problem) << ")\n";
+    } else if (region)
         std::cout << "region: " << region->rect.x0 << "," << region->rect.x1 << ","
                   << region->rect.y0 << "," << region->rect.y1 << " of a " << region->full_width
                   << "x" << region->full_height << " image\n";
@@ -53,7 +69,9 @@ int info(const std::vector<std::string>& args) {
     std::cout << "channel  min  max  mean\n";
     for (int c = 0; c < f.channels(); ++c) {
         double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-        long double sum = 0;
+        // Samples are whole numbers below 2^16, so a double sums 2^37 of them exactly; PFM's
+        // floats are summed with the error of each addition kept (Neumaier).
+        double sum = 0, compensation = 0;
         for (int y = 0; y < f.height(); ++y)
             for (int x = 0; x < f.width(); ++x) {
                 const double v = f.format == rt::ImageFormat::pfm
@@ -61,10 +79,13 @@ int info(const std::vector<std::string>& args) {
                                      : static_cast<double>(f.samples.sample(x, y, c));
                 lo = std::min(lo, v);
                 hi = std::max(hi, v);
-                sum += v;
+                const double t = sum + v;
+                compensation += std::fabs(sum) >= std::fabs(v) ? (sum - t) + v : (v - t) + sum;
+                sum = t;
             }
-        const double mean = static_cast<double>(
-            sum / (static_cast<long double>(f.width()) * static_cast<long double>(f.height())));
+        const double total = std::isfinite(sum + compensation) ? sum + compensation : sum;
+        const double mean =
+            total / (static_cast<double>(f.width()) * static_cast<double>(f.height()));
         std::cout << channel_names(f.channels(), c) << "  " << number(lo) << "  " << number(hi)
                   << "  " << number(mean) << "\n";
     }

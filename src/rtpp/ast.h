@@ -31,6 +31,9 @@ struct Expr {
     std::string text;
     std::vector<Expr> args;
     std::shared_ptr<const Block> body;
+    // The levels of expressions in this one, itself included: evaluating it and freeing it
+    // recurse this deep, so the parser holds it to the nesting limit.
+    int height = 1;
 };
 
 struct Stmt {

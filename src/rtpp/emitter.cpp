@@ -138,7 +138,14 @@ void Emitter::frame(int id, const Frame& f) {
     vector(f.z);
 }
 
-void Emitter::place(const ObjectValue& object) { place_in(object, Frame{}); }
+// Every object written counts, a composite's operands and a group's members included, and
+// the whole is refused before any of it is written.
+void Emitter::place(const ObjectValue& object) {
+    if (object.parts > limits_.objects - objects_)
+        fail(object.pos, "more than " + std::to_string(limits_.objects) + " objects written");
+    objects_ += object.parts;
+    place_in(object, Frame{});
+}
 
 void Emitter::place_in(const ObjectValue& object, const Frame& parent) {
     const Frame placed = compose(parent, object.transform);
@@ -147,8 +154,6 @@ void Emitter::place_in(const ObjectValue& object, const Frame& parent) {
         for (const ObjectPtr& child : object.children) place_in(*child, placed);
         return;
     }
-    if (++objects_ > limits_.objects)
-        fail(object.pos, "more than " + std::to_string(limits_.objects) + " objects written");
     switch (category) {
         case Category::primitive:
         case Category::csg:

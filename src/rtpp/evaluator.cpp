@@ -1,5 +1,6 @@
 #include "rtpp/evaluator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -314,6 +315,17 @@ ObjectPtr Evaluator::build_object(const Expr& expr) {
     if (++depth_ > limits_.nesting) fail(expr.pos, "objects nested too deep");
     run_block(*expr.body, &object);
     --depth_;
+    if (object.kind->category == Category::csg || object.kind->category == Category::group) {
+        object.depth = 1;
+        object.parts = 0;
+        for (const ObjectPtr& child : object.children) {
+            object.depth = std::max(object.depth, child->depth + 1);
+            object.parts = std::min(object.parts + child->parts, limits_.objects + 1);
+        }
+        if (object.depth > limits_.nesting)
+            fail(expr.pos, "objects nested more than " + std::to_string(limits_.nesting) +
+                               " deep (each group or CSG holding another counts, named ones too)");
+    }
     return std::make_shared<const ObjectValue>(std::move(object));
 }
 

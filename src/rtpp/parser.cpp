@@ -1,7 +1,13 @@
 #include "rtpp/parser.h"
 
-#include <fstream>
-#include <sstream>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdint>
+#include <stdexcept>
 
 #include "rtpp/lexer.h"
 
@@ -12,22 +18,50 @@ namespace {
 constexpr const char* kReservedWords[] = {"let",   "for", "to", "step", "if",   "else",  "include",
                                           "about", "and", "or", "not",  "true", "false", "pi"};
 
-// Reads a whole file, refusing one larger than the limit before reading it.
+// Why an include cannot be read although something is there: not a regular file.
+struct NotRegular {
+    std::string kind;
+};
+
+std::string kind_of(const struct stat& st) {
+    return S_ISFIFO(st.st_mode)   ? "a FIFO"
+           : S_ISCHR(st.st_mode)  ? "a character device"
+           : S_ISBLK(st.st_mode)  ? "a block device"
+           : S_ISSOCK(st.st_mode) ? "a socket"
+                                  : "not a file";
+}
+
+// Reads a whole file, as rt reads a texture: false when there is nothing to read (no such
+// file, a directory, no permission), so that the next candidate is tried. Only a regular
+// file is read, since a FIFO or a device could block rtpp for ever or feed it without end;
+// it is checked again on the open file, which O_NONBLOCK keeps from blocking on a FIFO put
+// there meanwhile. A file larger than the limit is refused before it is read.
 bool read_source(const std::filesystem::path& path, std::size_t max_size, std::string& text) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return false;
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) return false;
-    std::ostringstream buffer;
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0 || S_ISDIR(st.st_mode)) return false;
+    if (!S_ISREG(st.st_mode)) throw NotRegular{kind_of(st)};
+    if (static_cast<std::uintmax_t>(st.st_size) > max_size) throw std::length_error("too large");
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+    if (fd < 0) return false;
+    struct Closer {
+        int fd;
+        ~Closer() { ::close(fd); }
+    } closer{fd};
+    if (::fstat(fd, &st) != 0) return false;
+    if (!S_ISREG(st.st_mode)) throw NotRegular{kind_of(st)};
+    text.clear();
     char chunk[1 << 16];
-    while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
-        buffer.write(chunk, in.gcount());
-        if (static_cast<std::size_t>(buffer.tellp()) > max_size) {
+    for (;;) {
+        const ssize_t n = ::read(fd, chunk, sizeof chunk);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) return false;
+        if (n == 0) break;
+        text.append(chunk, static_cast<std::size_t>(n));
+        if (text.size() > max_size) {
             text.clear();
             throw std::length_error("too large");
         }
     }
-    text = buffer.str();
     return true;
 }
 
@@ -49,9 +83,7 @@ class Parser {
     class Nest {
       public:
         Nest(Parser& parser, SourcePos pos) : parser_(parser) {
-            if (++parser_.depth_ > parser_.options_.limits.nesting)
-                fail(pos, "nested more than " + std::to_string(parser_.options_.limits.nesting) +
-                              " deep (blocks, parentheses and objects count)");
+            if (++parser_.depth_ > parser_.options_.limits.nesting) parser_.too_deep(pos);
         }
         ~Nest() { --parser_.depth_; }
         Nest(const Nest&) = delete;
@@ -60,6 +92,23 @@ class Parser {
       private:
         Parser& parser_;
     };
+
+    [[noreturn]] void too_deep(SourcePos pos) const {
+        fail(pos, "nested more than " + std::to_string(options_.limits.nesting) +
+                      " deep (blocks, parentheses, objects and operators count)");
+    }
+
+    // An expression built from its operands: its height is one more than its highest
+    // operand's. A chain such as 1 + 1 + ... + 1, built by a loop rather than by recursion,
+    // grows the tree as surely as parentheses do, so its height counts towards the nesting
+    // limit together with the depth at which it is parsed.
+    Expr finished(Expr e) const {
+        int highest = 0;
+        for (const Expr& arg : e.args) highest = std::max(highest, arg.height);
+        e.height = highest + 1;
+        if (depth_ + e.height > options_.limits.nesting) too_deep(e.pos);
+        return e;
+    }
 
     const Token& peek(std::size_t ahead = 0) const {
         return tokens_[std::min(next_ + ahead, tokens_.size() - 1)];
@@ -168,7 +217,8 @@ class Parser {
         stmt.body = parse_braced_block("the if", stmt.pos);
         if (!accept_word("else")) return;
         if (peek().is_name("if")) {
-            // else if: an else block holding one if.
+            // else if: an else block holding one if, as deep in the tree as a braced block.
+            const Nest nest(*this, peek().pos);
             Stmt nested;
             nested.pos = take().pos;
             parse_if(nested);
@@ -204,6 +254,9 @@ class Parser {
             } catch (const std::length_error&) {
                 fail(pos, "included file '" + candidate.string() + "' is larger than " +
                               std::to_string(options_.limits.file_size) + " bytes");
+            } catch (const NotRegular& e) {
+                fail(pos, "included file '" + candidate.string() + "' is not a regular file (" +
+                              e.kind + ")");
             }
             std::error_code ec;
             std::filesystem::path canonical = std::filesystem::weakly_canonical(candidate, ec);
@@ -244,14 +297,14 @@ class Parser {
         return parse_or();
     }
 
-    static Expr binary(std::string op, Expr lhs, Expr rhs, SourcePos pos) {
+    Expr binary(std::string op, Expr lhs, Expr rhs, SourcePos pos) const {
         Expr e;
         e.kind = Expr::Kind::binary;
         e.pos = pos;
         e.text = std::move(op);
         e.args.push_back(std::move(lhs));
         e.args.push_back(std::move(rhs));
-        return e;
+        return finished(std::move(e));
     }
 
     Expr parse_or() {
@@ -278,7 +331,7 @@ class Parser {
         e.pos = take().pos;
         e.text = "not";
         e.args.push_back(parse_not());
-        return e;
+        return finished(std::move(e));
     }
     Expr parse_comparison() {
         Expr lhs = parse_sum();
@@ -317,7 +370,7 @@ class Parser {
         e.pos = peek().pos;
         e.text = take().text;
         e.args.push_back(parse_unary());
-        return e;
+        return finished(std::move(e));
     }
     // ^ is right-associative: 2^3^2 is 2^9.
     Expr parse_power() {
@@ -338,7 +391,7 @@ class Parser {
             if (member.text != "x" && member.text != "y" && member.text != "z")
                 fail(pos, "a vector has components x, y and z, not '" + member.text + "'");
             member.args.push_back(std::move(e));
-            e = std::move(member);
+            e = finished(std::move(member));
         }
         return e;
     }
@@ -384,7 +437,7 @@ class Parser {
             if (peek().is(","))
                 fail(peek().pos, "a vector has three components <x, y, z>, not more");
             expect(">", "to close the vector");
-            return e;
+            return finished(std::move(e));
         }
         fail(token.pos, "expected a value, got " + describe(token));
     }
@@ -410,7 +463,7 @@ class Parser {
                 objects_allowed_ = saved;
                 expect(")", "to close the arguments of " + e.text);
             }
-            return e;
+            return finished(std::move(e));
         }
         if (objects_allowed_ && peek().is("{")) {
             e.kind = Expr::Kind::object;

@@ -44,6 +44,12 @@ struct ObjectValue {
     std::vector<FieldValue> fields;
     std::vector<ObjectPtr> children;  // a group's members, a CSG's operands
     Frame transform;                  // its own transforms, in the order written
+    // Levels of objects in this one, itself included: a name lets each level hold the one
+    // before, so writing and freeing it would otherwise recurse without bound.
+    int depth = 1;
+    // The objects writing it writes: a group's or a CSG's operands, each counted as its own
+    // parts (so sharing cannot hide millions), and held at one more than the limit.
+    long parts = 1;
 
     const FieldValue* find(std::string_view name) const {
         for (const FieldValue& f : fields)
