@@ -10,12 +10,10 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cfloat>
 #include <cmath>
 #include <exception>
 #include <thread>
-#include <utility>
 
 namespace rt {
 
@@ -314,54 +312,6 @@ BoxRay::BoxRay(const Ray& ray) {
         near_bound_[k] = negative ? 3 + k : k;
         far_bound_[k] = negative ? k : 3 + k;
     }
-}
-
-namespace {
-
-// The next float toward +inf (up) or -inf, for a finite f, by stepping its bit pattern.
-float float_step(float f, bool up) {
-    if (f == 0) return up ? FLT_TRUE_MIN : -FLT_TRUE_MIN;
-    const auto bits = std::bit_cast<std::uint32_t>(f);
-    // Away from zero is one more in the magnitude, toward zero one less.
-    return std::bit_cast<float>((f > 0) == up ? bits + 1 : bits - 1);
-}
-
-// The floats just below and just above v, which must lie well within the float range.
-std::pair<float, float> float_bracket(double v) {
-    const auto f = static_cast<float>(v);
-    const auto back = static_cast<double>(f);
-    if (back < v) return {f, float_step(f, true)};
-    if (back > v) return {float_step(f, false), f};
-    return {f, f};
-}
-
-}  // namespace
-
-WideRay::WideRay(const Ray& ray, double t_min) {
-    // Beyond these, brackets and inverses no longer fit a float with room to spare.
-    constexpr double kLargest = 1e30;
-    usable_ = std::isfinite(t_min) && std::fabs(t_min) <= kLargest;
-    for (int k = 0; k < 3; ++k) {
-        const double o = ray.origin[k], d = ray.direction[k];
-        const double inverse = 1 / d;  // +-inf for a zero component, as in BoxRay
-        if (!(std::fabs(o) <= kLargest) || !std::isfinite(d) ||
-            (d != 0 && !(std::fabs(inverse) <= kLargest))) {
-            usable_ = false;
-            continue;
-        }
-        const auto [below, above] = float_bracket(o);
-        const bool negative = std::signbit(inverse);
-        // Along a positive direction the entry is at the min bound, and the entry distance
-        // (bound - origin) * inverse is smallest with the origin's upper bracket; the exit,
-        // at the max bound, is largest with the lower one. A negative direction swaps both.
-        near_bound_[k] = negative ? 3 + k : k;
-        far_bound_[k] = negative ? k : 3 + k;
-        near_origin_[k] = negative ? below : above;
-        far_origin_[k] = negative ? above : below;
-        inverse_[k] = static_cast<float>(inverse);
-    }
-    // Rounded to the nearest float: the widening of the entry covers that rounding.
-    t_min_ = usable_ ? static_cast<float>(t_min) : 0;
 }
 
 // Collapses the binary tree below an interior node into wide nodes, depth first: the node's

@@ -4,9 +4,12 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
+#include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -97,7 +100,7 @@ static_assert(WideNode::kWidth == 4, "the vector code below is four lanes wide")
 // anything not finite) is marked unusable, and the double test decides for it.
 class WideRay {
   public:
-    explicit WideRay(const Ray& ray, double t_min);
+    inline WideRay(const Ray& ray, double t_min);
 
     bool usable() const { return usable_; }
     // The lanes (bit i for child i) whose boxes the ray may enter within [t_min, t_max],
@@ -149,6 +152,8 @@ class Bvh {
     std::span<const BvhNode> nodes() const { return nodes_; }
     std::span<const WideNode> wide_nodes() const { return wide_; }
     std::span<const std::uint32_t> order() const { return order_; }
+    // Frees the binary tree, which traversal does not use (only tests inspect it).
+    void drop_binary_nodes() { nodes_ = {}; }
     // Gives up the leaf order, for an owner that stores its primitives in that order itself.
     std::vector<std::uint32_t> take_order() { return std::move(order_); }
 
@@ -203,8 +208,9 @@ template <Bvh::BoxTest Test, class Leaf>
 bool Bvh::walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) const {
     if (wide_.empty()) return false;
     const WideRay wide_ray(ray, t_min);
-    const BoxRay box_ray(ray);
     const bool exact = Test == BoxTest::exact || !wide_ray.usable();
+    std::optional<BoxRay> box_ray;  // only for the double test
+    if (exact) box_ray.emplace(ray);
     struct Pending {
         std::uint32_t child;
         std::uint32_t count;  // 0 for a wide node
@@ -222,7 +228,7 @@ bool Bvh::walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) c
                 const float bound[6] = {node.box[0][i], node.box[1][i], node.box[2][i],
                                         node.box[3][i], node.box[4][i], node.box[5][i]};
                 double t = 0;
-                if (!box_ray.enters(bound, t_min, t_max, t)) continue;
+                if (!box_ray->enters(bound, t_min, t_max, t)) continue;
                 lanes |= 1u << i;
                 // Rounded down, so that the pruning below never drops what the test kept.
                 const auto f = static_cast<float>(std::clamp(t, -3e38, 3e38));
@@ -231,17 +237,27 @@ bool Bvh::walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) c
         } else {
             lanes = wide_ray.enters<Test == BoxTest::simd>(node, t_max, t_enter);
         }
-        // Push the children entered, farthest first: insertion by entry distance.
-        const int base = top;
-        for (int i = 0; lanes != 0; ++i, lanes >>= 1) {
-            if ((lanes & 1u) == 0) continue;
-            const Pending p{node.child[i], node.count[i], t_enter[i]};
-            int at = top++;
-            while (at > base && stack[at - 1].t_enter < p.t_enter) {
-                stack[at] = stack[at - 1];
-                --at;
+        if (lanes != 0 && (lanes & (lanes - 1)) == 0) {
+            // One child entered (the common case deep in the tree): straight into it.
+            const int i = std::countr_zero(lanes);
+            if (node.count[i] == 0) {
+                current = node.child[i];
+                continue;
             }
-            stack[at] = p;
+            if (leaf(node.child[i], node.count[i])) return true;
+        } else {
+            // Push the children entered, farthest first: insertion by entry distance.
+            const int base = top;
+            for (; lanes != 0; lanes &= lanes - 1) {
+                const int i = std::countr_zero(lanes);
+                const Pending p{node.child[i], node.count[i], t_enter[i]};
+                int at = top++;
+                while (at > base && stack[at - 1].t_enter < p.t_enter) {
+                    stack[at] = stack[at - 1];
+                    --at;
+                }
+                stack[at] = p;
+            }
         }
         // Pop until a wide node the ray enters before the best hit so far (t_max may have
         // fallen since it was pushed), visiting leaves on the way.
@@ -273,6 +289,39 @@ bool Bvh::any(const Ray& ray, double t_min, double t_max, Visit&& visit) const {
             if (visit(i)) return true;
         return false;
     });
+}
+
+// Inline and without branches: a ray is prepared once per query, and for a small scene that
+// is a good part of the query's work.
+inline WideRay::WideRay(const Ray& ray, double t_min) {
+    // Beyond these, brackets and inverses no longer fit a float with room to spare.
+    constexpr double kLargest = 1e30;
+    bool usable = std::fabs(t_min) <= kLargest;
+    for (int k = 0; k < 3; ++k) {
+        const double d = ray.direction[k];
+        const double o = std::clamp(ray.origin[k], -kLargest, kLargest);
+        const double inverse = 1 / d;  // +-inf for a zero component, as in BoxRay
+        usable &= std::fabs(ray.origin[k]) <= kLargest && std::fabs(d) <= DBL_MAX &&
+                  (std::fabs(inverse) <= kLargest || d == 0);
+        // The origin's bracket: moved out by a float's relative precision and by more than
+        // the smallest normal float, then rounded to the nearest float, o lands past o.
+        const double room = std::fabs(o) * 0x1p-23 + 0x1p-125;
+        const auto below = static_cast<float>(o - room), above = static_cast<float>(o + room);
+        const bool negative = std::signbit(inverse);
+        // Along a positive direction the entry is at the min bound, and the entry distance
+        // (bound - origin) * inverse is smallest with the origin's upper bracket; the exit,
+        // at the max bound, is largest with the lower one. A negative direction swaps both.
+        near_bound_[k] = negative ? 3 + k : k;
+        far_bound_[k] = negative ? k : 3 + k;
+        near_origin_[k] = negative ? below : above;
+        far_origin_[k] = negative ? above : below;
+        // Out of range only where unusable; converted as infinite there, never overflowing.
+        inverse_[k] = static_cast<float>(
+            std::fabs(inverse) <= kLargest ? inverse : std::copysign(kInfinity, inverse));
+    }
+    usable_ = usable;
+    // Rounded to the nearest float: the widening of the entry covers that rounding.
+    t_min_ = static_cast<float>(std::clamp(t_min, -kLargest, kLargest));
 }
 
 // The four lanes' slab test. Per axis, the entry bound's row minus the origin, times the

@@ -34,6 +34,7 @@ void finish(Core& core, std::vector<Triangle>& triangles, std::vector<Bounds>& b
     if (triangles.empty()) return;
     // The hierarchy numbers triangles in leaf order; store them in that order.
     core.bvh = Bvh(boxes, threads);
+    core.bvh.drop_binary_nodes();
     boxes = {};
     core.triangles.reserve(triangles.size());
     for (const std::uint32_t i : core.bvh.take_order()) core.triangles.push_back(triangles[i]);
