@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include "accel/bvh.h"
@@ -117,6 +118,18 @@ TEST(wide_nodes_hold_every_leaf_once_and_nest) {
         if (n >= 5000) CHECK(bvh.wide_nodes().size() * 5 < bvh.nodes().size() * 2);
     }
     CHECK(Bvh().wide_nodes().empty());
+}
+
+TEST(the_same_wide_tree_on_any_number_of_threads) {
+    Random random(25);
+    const std::vector<Bounds> boxes = random_boxes(random, 120000, 50, 0.5);
+    const Bvh one(boxes, 1);
+    for (const int threads : {2, 3}) {
+        const Bvh many(boxes, threads);
+        CHECK_EQ(many.wide_nodes().size(), one.wide_nodes().size());
+        CHECK(std::memcmp(many.wide_nodes().data(), one.wide_nodes().data(),
+                          one.wide_nodes().size() * sizeof(WideNode)) == 0);
+    }
 }
 
 TEST(float_lanes_keep_every_box_the_double_test_keeps) {

@@ -84,6 +84,7 @@ struct alignas(64) WideNode {
     std::uint32_t child[kWidth];
     std::uint8_t count[kWidth];  // a leaf child's primitives; 0 for an interior child
     std::uint8_t size;           // children in use, from the first lane on
+    std::uint8_t unused[11];     // zero: no padding of undefined value, so nodes compare bytewise
 
     bool is_leaf(int i) const { return count[i] != 0; }
 };
@@ -171,14 +172,14 @@ class Bvh {
     // [first, first + count) in leaf order; for any, leaf returns true to stop.
     template <BoxTest Test = BoxTest::simd, class Leaf>
     void closest_leaves(const Ray& ray, double t_min, double& t_max, Leaf&& leaf) const {
-        walk<Test>(ray, t_min, t_max, [&](std::uint32_t first, std::uint32_t count) {
+        walk<Test, true>(ray, t_min, t_max, [&](std::uint32_t first, std::uint32_t count) {
             leaf(first, count);
             return false;
         });
     }
     template <BoxTest Test = BoxTest::simd, class Leaf>
     bool any_leaves(const Ray& ray, double t_min, double t_max, Leaf&& leaf) const {
-        return walk<Test>(ray, t_min, t_max, leaf);
+        return walk<Test, false>(ray, t_min, t_max, leaf);
     }
 
   private:
@@ -191,7 +192,9 @@ class Bvh {
     void collapse();
     std::uint32_t collapse_below(std::uint32_t binary);
 
-    template <BoxTest Test, class Leaf>
+    // Nearest: children entered are taken nearest first (for closest); otherwise in any order
+    // (for any, which stops at the first blocker wherever it lies).
+    template <BoxTest Test, bool Nearest, class Leaf>
     bool walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) const;
 
     std::vector<BvhNode> nodes_;
@@ -199,12 +202,12 @@ class Bvh {
     std::vector<std::uint32_t> order_;
 };
 
-// Nodes are visited depth first. At a wide node all children's boxes are tested at once; those
-// the ray enters go on a small fixed stack with their entry distances, the farthest first, so
-// the nearest is taken next and the others wait; a waiting child is dropped without another
-// test once a hit nearer than its entry has been found. leaf(first, count) returns true to
-// stop; walk returns whether one did.
-template <Bvh::BoxTest Test, class Leaf>
+// Nodes are visited depth first. At a wide node all children's boxes are tested at once; a lone
+// child entered is taken at once, several go on a small fixed stack with their entry
+// distances (for Nearest, the farthest first, so the nearest is taken next) and wait; a
+// waiting child is dropped without another test once a hit nearer than its entry has been
+// found. leaf(first, count) returns true to stop; walk returns whether one did.
+template <Bvh::BoxTest Test, bool Nearest, class Leaf>
 bool Bvh::walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) const {
     if (wide_.empty()) return false;
     const WideRay wide_ray(ray, t_min);
@@ -252,7 +255,7 @@ bool Bvh::walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) c
                 const int i = std::countr_zero(lanes);
                 const Pending p{node.child[i], node.count[i], t_enter[i]};
                 int at = top++;
-                while (at > base && stack[at - 1].t_enter < p.t_enter) {
+                while (Nearest && at > base && stack[at - 1].t_enter < p.t_enter) {
                     stack[at] = stack[at - 1];
                     --at;
                 }
@@ -276,7 +279,7 @@ bool Bvh::walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) c
 
 template <Bvh::BoxTest Test, class Visit>
 void Bvh::closest(const Ray& ray, double t_min, double& t_max, Visit&& visit) const {
-    walk<Test>(ray, t_min, t_max, [&](std::uint32_t first, std::uint32_t count) {
+    walk<Test, true>(ray, t_min, t_max, [&](std::uint32_t first, std::uint32_t count) {
         for (std::uint32_t i = first, end = first + count; i < end; ++i) visit(i);
         return false;
     });
@@ -284,7 +287,7 @@ void Bvh::closest(const Ray& ray, double t_min, double& t_max, Visit&& visit) co
 
 template <Bvh::BoxTest Test, class Visit>
 bool Bvh::any(const Ray& ray, double t_min, double t_max, Visit&& visit) const {
-    return walk<Test>(ray, t_min, t_max, [&](std::uint32_t first, std::uint32_t count) {
+    return walk<Test, false>(ray, t_min, t_max, [&](std::uint32_t first, std::uint32_t count) {
         for (std::uint32_t i = first, end = first + count; i < end; ++i)
             if (visit(i)) return true;
         return false;
@@ -333,7 +336,7 @@ template <bool Simd>
 inline unsigned WideRay::enters(const WideNode& node, double t_max,
                                 float t_enter[WideNode::kWidth]) const {
     // Rounded to the nearest float: the widening below covers that rounding too.
-    const float t_max_f = t_max < 3e38 ? static_cast<float>(t_max) : HUGE_VALF;
+    const float t_max_f = t_max < 3e38 ? static_cast<float>(std::max(t_max, -3e38)) : HUGE_VALF;
     constexpr float grow = 1 + kFloatMargin, shrink = 1 - kFloatMargin;
     if constexpr (Simd) {
         using Floats = float __attribute__((vector_size(16)));
