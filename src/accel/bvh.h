@@ -210,8 +210,14 @@ class Bvh {
 template <Bvh::BoxTest Test, bool Nearest, class Leaf>
 bool Bvh::walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) const {
     if (wide_.empty()) return false;
-    const WideRay wide_ray(ray, t_min);
-    const bool exact = Test == BoxTest::exact || !wide_ray.usable();
+    // A tree of one node (a scene of a few objects, or one mesh) takes the double test: for a
+    // single node, preparing the ray for the float test costs more than it saves.
+    bool exact = Test == BoxTest::exact || wide_.size() == 1;
+    std::optional<WideRay> wide_ray;
+    if (!exact) {
+        wide_ray.emplace(ray, t_min);
+        exact = !wide_ray->usable();
+    }
     std::optional<BoxRay> box_ray;  // only for the double test
     if (exact) box_ray.emplace(ray);
     struct Pending {
@@ -238,7 +244,7 @@ bool Bvh::walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) c
                 t_enter[i] = static_cast<double>(f) > t ? std::nextafter(f, -HUGE_VALF) : f;
             }
         } else {
-            lanes = wide_ray.enters<Test == BoxTest::simd>(node, t_max, t_enter);
+            lanes = wide_ray->enters<Test == BoxTest::simd>(node, t_max, t_enter);
         }
         if (lanes != 0 && (lanes & (lanes - 1)) == 0) {
             // One child entered (the common case deep in the tree): straight into it.
