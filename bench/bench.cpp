@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
+#include "batch/statistics.h"
 #include "rt/error.h"
 #include "rt/reader.h"
-#include "batch/statistics.h"
 #include "rt/render.h"
 
 namespace {
@@ -75,18 +75,22 @@ Figures measure(const std::string& file, rt::RenderOptions options, int repeat) 
 }
 
 void print_header() {
-    std::printf("%-16s %9s %11s %8s %8s %9s %8s %10s %12s %9s %8s\n", "scene", "objects", "size",
-                "read_s", "build_s", "render_s", "Mrays/s", "primary_M", "secondary_M", "shadow_M",
-                "peak_MB");
+    std::printf("%-16s %9s %11s %8s %8s %9s %8s %10s %12s %9s %8s %9s\n", "scene", "objects",
+                "size", "read_s", "build_s", "render_s", "Mrays/s", "primary_M", "secondary_M",
+                "shadow_M", "peak_MB", "tests/ray");
 }
 
 void print_row(const std::string& name, const Figures& f) {
     const auto millions = [](std::uint64_t n) { return static_cast<double>(n) / 1e6; };
     const std::string size = std::to_string(f.xres) + "x" + std::to_string(f.yres);
-    std::printf("%-16s %9zu %11s %8.3f %8.3f %9.3f %8.2f %10.3f %12.3f %9.3f %8.1f\n", name.c_str(),
-                f.objects, size.c_str(), f.read_s, f.build_s, f.render_s,
+    const double tests_per_ray = f.rays.total() > 0 ? static_cast<double>(f.rays.object_tests) /
+                                                          static_cast<double>(f.rays.total())
+                                                    : 0;
+    std::printf("%-16s %9zu %11s %8.3f %8.3f %9.3f %8.2f %10.3f %12.3f %9.3f %8.1f %9.2f\n",
+                name.c_str(), f.objects, size.c_str(), f.read_s, f.build_s, f.render_s,
                 millions(f.rays.total()) / f.render_s, millions(f.rays.primary_rays),
-                millions(f.rays.secondary_rays()), millions(f.rays.shadow_rays), peak_megabytes());
+                millions(f.rays.secondary_rays()), millions(f.rays.shadow_rays), peak_megabytes(),
+                tests_per_ray);
     std::fflush(stdout);
 }
 

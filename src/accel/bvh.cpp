@@ -314,6 +314,79 @@ BoxRay::BoxRay(const Ray& ray) {
     }
 }
 
+// Collapses the binary tree below an interior node into wide nodes, depth first: the node's
+// two children, then repeatedly the interior child of largest surface area opened into its
+// two, until there are four or only leaves. Returns the wide node's index.
+std::uint32_t Bvh::collapse_below(std::uint32_t binary) {
+    const auto index = static_cast<std::uint32_t>(wide_.size());
+    wide_.emplace_back();
+    std::uint32_t children[WideNode::kWidth] = {binary + 1, nodes_[binary].offset};
+    int size = 2;
+    auto half_area = [&](std::uint32_t n) {
+        const float* b = nodes_[n].bound;
+        double d[3];
+        for (int k = 0; k < 3; ++k) d[k] = static_cast<double>(b[3 + k]) - b[k];
+        return d[0] * d[1] + d[1] * d[2] + d[2] * d[0];
+    };
+    while (size < WideNode::kWidth) {
+        int widest = -1;
+        double widest_area = -1;
+        for (int i = 0; i < size; ++i) {
+            if (nodes_[children[i]].is_leaf()) continue;
+            const double area = half_area(children[i]);
+            // Not finite (boxes beyond float range) counts as the widest.
+            if (widest < 0 || !(area <= widest_area)) {
+                widest = i;
+                widest_area = area;
+            }
+        }
+        if (widest < 0) break;
+        const std::uint32_t opened = children[widest];
+        children[widest] = opened + 1;
+        children[size++] = nodes_[opened].offset;
+    }
+    WideNode node{};
+    for (int row = 0; row < 3; ++row)
+        for (float& v : node.box[row]) v = HUGE_VALF;
+    for (int row = 3; row < 6; ++row)
+        for (float& v : node.box[row]) v = -HUGE_VALF;
+    node.size = static_cast<std::uint8_t>(size);
+    for (int i = 0; i < size; ++i) {
+        const BvhNode& child = nodes_[children[i]];
+        for (int row = 0; row < 6; ++row) node.box[row][i] = child.bound[row];
+        if (child.is_leaf()) {
+            node.child[i] = child.offset;
+            node.count[i] = static_cast<std::uint8_t>(child.count);
+        }
+    }
+    wide_[index] = node;
+    // The interior children's nodes follow, each after the subtree before it.
+    for (int i = 0; i < size; ++i)
+        if (!nodes_[children[i]].is_leaf()) {
+            const std::uint32_t below = collapse_below(children[i]);
+            wide_[index].child[i] = below;
+        }
+    return index;
+}
+
+void Bvh::collapse() {
+    if (nodes_.empty()) return;
+    if (!nodes_[0].is_leaf()) {
+        collapse_below(0);
+    } else {
+        // A tree that is one leaf: a wide node with that leaf as its only child.
+        WideNode node{};
+        for (int row = 0; row < 6; ++row)
+            for (float& v : node.box[row]) v = row < 3 ? HUGE_VALF : -HUGE_VALF;
+        for (int row = 0; row < 6; ++row) node.box[row][0] = nodes_[0].bound[row];
+        node.child[0] = nodes_[0].offset;
+        node.count[0] = static_cast<std::uint8_t>(nodes_[0].count);
+        node.size = 1;
+        wide_.push_back(node);
+    }
+    wide_.shrink_to_fit();
+}
+
 Bvh::Bvh(std::span<const Bounds> boxes, int threads) {
     if (boxes.empty()) return;
     std::vector<Reference> refs;
@@ -325,6 +398,7 @@ Bvh::Bvh(std::span<const Bounds> boxes, int threads) {
     Builder builder(refs, nodes_);
     builder.build(builder.whole(), 0, threads);
     nodes_.shrink_to_fit();
+    collapse();
     order_.reserve(refs.size());
     for (const Reference& r : refs) order_.push_back(r.index);
 }

@@ -3,7 +3,13 @@
 // the boxes hold: traversal calls back with each candidate's place in leaf order.
 #pragma once
 
+#include <algorithm>
+#include <bit>
+#include <cfloat>
+#include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -38,10 +44,13 @@ class BoxRay {
     // pruned. A ray parallel to a slab whose origin lies on the slab's plane makes 0 * inf =
     // NaN there; the comparisons below then ignore that slab, which only keeps more.
     bool enters(const BvhNode& node, double t_min, double t_max, double& t_enter) const {
+        return enters(node.bound, t_min, t_max, t_enter);
+    }
+    bool enters(const float bound[6], double t_min, double t_max, double& t_enter) const {
         double near = t_min, far = t_max;
         for (int k = 0; k < 3; ++k) {
-            const double slab_near = (node.bound[near_bound_[k]] - origin_[k]) * inverse_[k];
-            const double slab_far = (node.bound[far_bound_[k]] - origin_[k]) * inverse_[k];
+            const double slab_near = (bound[near_bound_[k]] - origin_[k]) * inverse_[k];
+            const double slab_far = (bound[far_bound_[k]] - origin_[k]) * inverse_[k];
             if (slab_near > near) near = slab_near;
             if (slab_far < far) far = slab_far;
         }
@@ -61,13 +70,78 @@ class BoxRay {
     int far_bound_[3];
 };
 
+// One node of the wide tree that traversal walks: up to four children, whose boxes lie side
+// by side (structure of arrays) so that one ray is tested against all four at once. 128
+// bytes, two cache lines. The wide tree is the binary tree above collapsed: each wide node
+// takes the place of up to three binary interior nodes, and its children are the binary
+// nodes below them, so the leaves and their order are the binary tree's.
+struct alignas(64) WideNode {
+    static constexpr int kWidth = 4;
+    // box[k][i] for k < 3 is child i's min corner along axis k, box[3 + k][i] its max; floats
+    // copied from the binary nodes (already rounded outward). Unused lanes hold an empty box.
+    float box[6][kWidth];
+    // A leaf child's first primitive in leaf order, or an interior child's wide node index.
+    std::uint32_t child[kWidth];
+    std::uint8_t count[kWidth];  // a leaf child's primitives; 0 for an interior child
+    std::uint8_t size;           // children in use, from the first lane on
+    std::uint8_t unused[11];     // zero: no padding of undefined value, so nodes compare bytewise
+
+    bool is_leaf(int i) const { return count[i] != 0; }
+};
+static_assert(sizeof(WideNode) == 128);
+static_assert(WideNode::kWidth == 4, "the vector code below is four lanes wide");
+
+// A ray prepared for testing the four boxes of a wide node in float. Float arithmetic only
+// culls, so every rounding is taken against culling: the origin is bracketed by the floats
+// just below and above it, each slab distance is computed from the bracket end that makes
+// it nearer (entry) or farther (exit), and the entry and exit are widened by a relative
+// margin larger than a float's rounding error on the three operations (kFloatMargin). The
+// result is a superset of what the double test keeps. A ray whose numbers a float cannot
+// bracket (coordinates beyond 1e30, a direction component whose inverse overflows a float,
+// anything not finite) is marked unusable, and the double test decides for it.
+class WideRay {
+  public:
+    inline WideRay(const Ray& ray, double t_min);
+
+    bool usable() const { return usable_; }
+    // The lanes (bit i for child i) whose boxes the ray may enter within [t_min, t_max],
+    // and, per lane, a distance at or before which it enters. Simd selects the vector code;
+    // the scalar code does the same operations lane by lane and keeps the same lanes.
+    // Inlined into traversal always: there the ray's numbers stay in registers.
+    template <bool Simd>
+    [[gnu::always_inline]] inline unsigned enters(const WideNode& node, double t_max,
+                                                  float t_enter[WideNode::kWidth]) const;
+
+  private:
+    // Relative widening of the float entry and exit distances: 2^-20, about 16 float
+    // roundings, well over the three of a slab distance, the one of t_min or t_max and the
+    // one of the widening itself.
+    static constexpr float kFloatMargin = 0x1p-20f;
+    // Added to the exit so that distances flushed to zero or to subnormals are not misjudged.
+    static constexpr float kFloatFloor = 1e-35f;
+
+    float near_origin_[3];  // the origin bracket's end used with the entry bound, per axis
+    float far_origin_[3];   // and with the exit bound
+    float inverse_[3];
+    int near_bound_[3];  // which of the six box rows is the entry bound per axis (k or 3 + k)
+    int far_bound_[3];
+    float t_min_;
+    bool usable_ = false;
+};
+
 class Bvh {
   public:
-    // The most primitives a leaf holds; a leaf's count must fit its 16 bits.
+    // The most primitives a leaf holds; a leaf's count must fit its 16 bits (and the wide
+    // node's 8).
     static constexpr std::size_t kMaxLeafSize = 8;
     // Deeper than this, nodes split at the median of their primitives, so traversal's
     // fixed stack can never overflow (see kStackSize).
     static constexpr int kMaxSahDepth = 48;
+
+    // How traversal tests a wide node's boxes: in float with vector code (the default), in
+    // float lane by lane, or in double (what a ray unusable in float always gets). All three
+    // offer every primitive whose box the ray crosses.
+    enum class BoxTest { simd, scalar, exact };
 
     Bvh() = default;
     // Builds over the given boxes, which must be finite, with binned SAH splits, on up to
@@ -75,8 +149,12 @@ class Bvh {
     // boxes[i]; order() lists them as the leaves hold them.
     explicit Bvh(std::span<const Bounds> boxes, int threads = 1);
 
+    // The binary tree the build made, and the wide tree traversal walks.
     std::span<const BvhNode> nodes() const { return nodes_; }
+    std::span<const WideNode> wide_nodes() const { return wide_; }
     std::span<const std::uint32_t> order() const { return order_; }
+    // Frees the binary tree, which traversal does not use (only tests inspect it).
+    void drop_binary_nodes() { nodes_ = {}; }
     // Gives up the leaf order, for an owner that stores its primitives in that order itself.
     std::vector<std::uint32_t> take_order() { return std::move(order_); }
 
@@ -84,96 +162,228 @@ class Bvh {
     // may reach in [t_min, t_max], nearer leaves first. visit may lower t_max, the best hit
     // so far, which prunes the rest; a leaf entered exactly at t_max is still visited, so
     // the caller can break ties.
-    template <class Visit>
+    template <BoxTest Test = BoxTest::simd, class Visit>
     void closest(const Ray& ray, double t_min, double& t_max, Visit&& visit) const;
     // Calls visit(position) for candidates in [t_min, t_max] until one returns true; returns
     // whether one did.
-    template <class Visit>
+    template <BoxTest Test = BoxTest::simd, class Visit>
     bool any(const Ray& ray, double t_min, double t_max, Visit&& visit) const;
+    // As closest and any, a leaf at a time: leaf(first, count) for the primitives at
+    // [first, first + count) in leaf order; for any, leaf returns true to stop.
+    template <BoxTest Test = BoxTest::simd, class Leaf>
+    void closest_leaves(const Ray& ray, double t_min, double& t_max, Leaf&& leaf) const {
+        walk<Test, true>(ray, t_min, t_max, [&](std::uint32_t first, std::uint32_t count) {
+            leaf(first, count);
+            return false;
+        });
+    }
+    template <BoxTest Test = BoxTest::simd, class Leaf>
+    bool any_leaves(const Ray& ray, double t_min, double t_max, Leaf&& leaf) const {
+        return walk<Test, false>(ray, t_min, t_max, leaf);
+    }
 
   private:
     // With at most kMaxSahDepth SAH levels and median splits below them, no path is longer
-    // than kMaxSahDepth + 32 nodes for fewer than 2^32 primitives; the stack holds one
-    // entry per level.
-    static constexpr int kStackSize = kMaxSahDepth + 40;
+    // than kMaxSahDepth + 32 nodes for fewer than 2^32 primitives, and no wide path longer
+    // than that. Each wide node visited pushes at most four children and pops one, so the
+    // stack holds at most three entries per level and four more.
+    static constexpr int kStackSize = 3 * (kMaxSahDepth + 40) + 4;
 
-    template <class Leaf>
-    void walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) const;
+    void collapse();
+    std::uint32_t collapse_below(std::uint32_t binary);
+
+    // Nearest: children entered are taken nearest first (for closest); otherwise in any order
+    // (for any, which stops at the first blocker wherever it lies).
+    template <BoxTest Test, bool Nearest, class Leaf>
+    bool walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) const;
 
     std::vector<BvhNode> nodes_;
+    std::vector<WideNode> wide_;
     std::vector<std::uint32_t> order_;
 };
 
-// Nodes are visited depth first. At an interior node both children's boxes are tested; the
-// ray goes on into the one it enters first, and the other waits on a small fixed stack with
-// its entry distance, so that it is dropped without another test once a hit nearer than
-// that has been found. leaf(node) returns true to stop.
-template <class Leaf>
-void Bvh::walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) const {
-    if (nodes_.empty()) return;
-    const BoxRay box_ray(ray);
+// Nodes are visited depth first. At a wide node all children's boxes are tested at once; a lone
+// child entered is taken at once, several go on a small fixed stack with their entry
+// distances (for Nearest, the farthest first, so the nearest is taken next) and wait; a
+// waiting child is dropped without another test once a hit nearer than its entry has been
+// found. leaf(first, count) returns true to stop; walk returns whether one did.
+template <Bvh::BoxTest Test, bool Nearest, class Leaf>
+bool Bvh::walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) const {
+    if (wide_.empty()) return false;
+    // A tree of one node (a scene of a few objects, or one mesh) takes the double test: for a
+    // single node, preparing the ray for the float test costs more than it saves.
+    bool exact = Test == BoxTest::exact || wide_.size() == 1;
+    std::optional<WideRay> wide_ray;
+    if (!exact) {
+        wide_ray.emplace(ray, t_min);
+        exact = !wide_ray->usable();
+    }
+    std::optional<BoxRay> box_ray;  // only for the double test
+    if (exact) box_ray.emplace(ray);
     struct Pending {
-        std::uint32_t node;
-        double t_enter;
+        std::uint32_t child;
+        std::uint32_t count;  // 0 for a wide node
+        float t_enter;
     };
     Pending stack[kStackSize];
     int top = 0;
     std::uint32_t current = 0;
-    double t_enter = 0;
-    if (!box_ray.enters(nodes_[0], t_min, t_max, t_enter)) return;
     for (;;) {
-        const BvhNode& node = nodes_[current];
-        if (!node.is_leaf()) {
-            std::uint32_t first = current + 1, second = node.offset;
-            double t_first = 0, t_second = 0;
-            const bool enters_first = box_ray.enters(nodes_[first], t_min, t_max, t_first);
-            const bool enters_second = box_ray.enters(nodes_[second], t_min, t_max, t_second);
-            if (enters_first && enters_second) {
-                if (t_second < t_first) {
-                    std::swap(first, second);
-                    std::swap(t_first, t_second);
-                }
-                stack[top++] = {second, t_second};
-                current = first;
-                continue;
+        const WideNode& node = wide_[current];
+        float t_enter[WideNode::kWidth];
+        unsigned lanes = 0;
+        if (exact) {
+            for (int i = 0; i < node.size; ++i) {
+                const float bound[6] = {node.box[0][i], node.box[1][i], node.box[2][i],
+                                        node.box[3][i], node.box[4][i], node.box[5][i]};
+                double t = 0;
+                if (!box_ray->enters(bound, t_min, t_max, t)) continue;
+                lanes |= 1u << i;
+                // Rounded down, so that the pruning below never drops what the test kept.
+                const auto f = static_cast<float>(std::clamp(t, -3e38, 3e38));
+                t_enter[i] = static_cast<double>(f) > t ? std::nextafter(f, -HUGE_VALF) : f;
             }
-            if (enters_first || enters_second) {
-                current = enters_first ? first : second;
-                continue;
-            }
-        } else if (leaf(node)) {
-            return;
+        } else {
+            lanes = wide_ray->enters<Test == BoxTest::simd>(node, t_max, t_enter);
         }
-        // Pop until a node the ray enters before the best hit so far (t_max may have fallen
-        // since it was pushed).
+        if (lanes != 0 && (lanes & (lanes - 1)) == 0) {
+            // One child entered (the common case deep in the tree): straight into it.
+            const int i = std::countr_zero(lanes);
+            if (node.count[i] == 0) {
+                current = node.child[i];
+                continue;
+            }
+            if (leaf(node.child[i], node.count[i])) return true;
+        } else {
+            // Push the children entered, farthest first: insertion by entry distance.
+            const int base = top;
+            for (; lanes != 0; lanes &= lanes - 1) {
+                const int i = std::countr_zero(lanes);
+                const Pending p{node.child[i], node.count[i], t_enter[i]};
+                int at = top++;
+                while (Nearest && at > base && stack[at - 1].t_enter < p.t_enter) {
+                    stack[at] = stack[at - 1];
+                    --at;
+                }
+                stack[at] = p;
+            }
+        }
+        // Pop until a wide node the ray enters before the best hit so far (t_max may have
+        // fallen since it was pushed), visiting leaves on the way.
         for (;;) {
-            if (top == 0) return;
-            const Pending& next = stack[--top];
-            if (next.t_enter <= t_max) {
-                current = next.node;
+            if (top == 0) return false;
+            const Pending next = stack[--top];
+            if (!(next.t_enter <= t_max)) continue;
+            if (next.count == 0) {
+                current = next.child;
                 break;
             }
+            if (leaf(next.child, next.count)) return true;
         }
     }
 }
 
-template <class Visit>
+template <Bvh::BoxTest Test, class Visit>
 void Bvh::closest(const Ray& ray, double t_min, double& t_max, Visit&& visit) const {
-    walk(ray, t_min, t_max, [&](const BvhNode& node) {
-        for (std::uint32_t i = node.offset, end = node.offset + node.count; i < end; ++i) visit(i);
+    walk<Test, true>(ray, t_min, t_max, [&](std::uint32_t first, std::uint32_t count) {
+        for (std::uint32_t i = first, end = first + count; i < end; ++i) visit(i);
         return false;
     });
 }
 
-template <class Visit>
+template <Bvh::BoxTest Test, class Visit>
 bool Bvh::any(const Ray& ray, double t_min, double t_max, Visit&& visit) const {
-    bool found = false;
-    walk(ray, t_min, t_max, [&](const BvhNode& node) {
-        for (std::uint32_t i = node.offset, end = node.offset + node.count; i < end; ++i)
-            if (visit(i)) return found = true;
+    return walk<Test, false>(ray, t_min, t_max, [&](std::uint32_t first, std::uint32_t count) {
+        for (std::uint32_t i = first, end = first + count; i < end; ++i)
+            if (visit(i)) return true;
         return false;
     });
-    return found;
+}
+
+// Inline and without branches: a ray is prepared once per query, and for a small scene that
+// is a good part of the query's work.
+inline WideRay::WideRay(const Ray& ray, double t_min) {
+    // Beyond these, brackets and inverses no longer fit a float with room to spare.
+    constexpr double kLargest = 1e30;
+    bool usable = std::fabs(t_min) <= kLargest;
+    for (int k = 0; k < 3; ++k) {
+        const double d = ray.direction[k];
+        const double o = std::clamp(ray.origin[k], -kLargest, kLargest);
+        const double inverse = 1 / d;  // +-inf for a zero component, as in BoxRay
+        usable &= std::fabs(ray.origin[k]) <= kLargest && std::fabs(d) <= DBL_MAX &&
+                  (std::fabs(inverse) <= kLargest || d == 0);
+        // The origin's bracket: moved out by a float's relative precision and by more than
+        // the smallest normal float, then rounded to the nearest float, o lands past o.
+        const double room = std::fabs(o) * 0x1p-23 + 0x1p-125;
+        const auto below = static_cast<float>(o - room), above = static_cast<float>(o + room);
+        const bool negative = std::signbit(inverse);
+        // Along a positive direction the entry is at the min bound, and the entry distance
+        // (bound - origin) * inverse is smallest with the origin's upper bracket; the exit,
+        // at the max bound, is largest with the lower one. A negative direction swaps both.
+        near_bound_[k] = negative ? 3 + k : k;
+        far_bound_[k] = negative ? k : 3 + k;
+        near_origin_[k] = negative ? below : above;
+        far_origin_[k] = negative ? above : below;
+        // Out of range only where unusable; converted as infinite there, never overflowing.
+        inverse_[k] = static_cast<float>(
+            std::fabs(inverse) <= kLargest ? inverse : std::copysign(kInfinity, inverse));
+    }
+    usable_ = usable;
+    // Rounded to the nearest float: the widening of the entry covers that rounding.
+    t_min_ = static_cast<float>(std::clamp(t_min, -kLargest, kLargest));
+}
+
+// The four lanes' slab test. Per axis, the entry bound's row minus the origin, times the
+// inverse direction, and likewise the exit; the entry is the largest of t_min and the three,
+// the exit the smallest of t_max and the three. A NaN (0 * inf: a ray parallel to a slab
+// with its origin on the slab's plane) loses every comparison, so that slab is ignored,
+// which only keeps more. Unused lanes are masked off.
+template <bool Simd>
+inline unsigned WideRay::enters(const WideNode& node, double t_max,
+                                float t_enter[WideNode::kWidth]) const {
+    // Rounded to the nearest float: the widening below covers that rounding too.
+    const float t_max_f = t_max < 3e38 ? static_cast<float>(std::max(t_max, -3e38)) : HUGE_VALF;
+    constexpr float grow = 1 + kFloatMargin, shrink = 1 - kFloatMargin;
+    if constexpr (Simd) {
+        using Floats = float __attribute__((vector_size(16)));
+        using Ints = std::int32_t __attribute__((vector_size(16)));
+        auto load = [&](int row) {
+            Floats v;
+            std::memcpy(&v, node.box[row], sizeof v);
+            return v;
+        };
+        Floats near = Floats{} + t_min_, far = Floats{} + t_max_f;
+        for (int k = 0; k < 3; ++k) {
+            const Floats slab_near = (load(near_bound_[k]) - near_origin_[k]) * inverse_[k];
+            const Floats slab_far = (load(far_bound_[k]) - far_origin_[k]) * inverse_[k];
+            near = slab_near > near ? slab_near : near;
+            far = slab_far < far ? slab_far : far;
+        }
+        near = near * (near >= 0 ? Floats{} + shrink : Floats{} + grow);
+        far = far * (far >= 0 ? Floats{} + grow : Floats{} + shrink) + kFloatFloor;
+        // Each lane's bit where it is in (the comparison gives all ones there), gathered.
+        const Ints in = (near <= far) & Ints{1, 2, 4, 8};
+        std::memcpy(t_enter, &near, sizeof near);
+        const auto lanes = static_cast<unsigned>(in[0] | in[1] | in[2] | in[3]);
+        return lanes & ((1u << node.size) - 1);
+    } else {
+        unsigned lanes = 0;
+        for (int i = 0; i < node.size; ++i) {
+            float near = t_min_, far = t_max_f;
+            for (int k = 0; k < 3; ++k) {
+                const float slab_near =
+                    (node.box[near_bound_[k]][i] - near_origin_[k]) * inverse_[k];
+                const float slab_far = (node.box[far_bound_[k]][i] - far_origin_[k]) * inverse_[k];
+                near = slab_near > near ? slab_near : near;
+                far = slab_far < far ? slab_far : far;
+            }
+            near = near * (near >= 0 ? shrink : grow);
+            far = far * (far >= 0 ? grow : shrink) + kFloatFloor;
+            t_enter[i] = near;
+            if (near <= far) lanes |= 1u << i;
+        }
+        return lanes;
+    }
 }
 
 }  // namespace rt

@@ -43,6 +43,7 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
         }
     }
     bvh_ = Bvh(boxes, threads);
+    bvh_.drop_binary_nodes();
     entries_.reserve(objects.size());
     for (const std::uint32_t i : bvh_.take_order()) entries_.push_back(bounded[i]);
     bounded_count_ = entries_.size();

@@ -34,44 +34,57 @@ void finish(Core& core, std::vector<Triangle>& triangles, std::vector<Bounds>& b
     if (triangles.empty()) return;
     // The hierarchy numbers triangles in leaf order; store them in that order.
     core.bvh = Bvh(boxes, threads);
+    core.bvh.drop_binary_nodes();
     boxes = {};
     core.triangles.reserve(triangles.size());
     for (const std::uint32_t i : core.bvh.take_order()) core.triangles.push_back(triangles[i]);
+    core.packed.reserve(core.triangles.size());
+    for (const Triangle& t : core.triangles)
+        core.packed.push_back(
+            {{core.vertex(t, 0), core.vertex(t, 1), core.vertex(t, 2)}, t.place()});
 }
 
 bool closest(const Core& m, const Ray& ray, Interval range, Hit& hit) {
     const TriangleRay triangle_ray(ray);
     double best = range.t_max;
-    const Triangle* best_triangle = nullptr;
-    std::uint32_t best_position = 0;
+    constexpr std::uint32_t kNone = ~std::uint32_t{0};
+    std::uint32_t best_position = kNone, best_place = 0;
     // Of triangles hit at the same distance, the one written first wins, whatever order the
     // hierarchy visits them in.
-    m.bvh.closest(ray, range.t_min, best, [&](std::uint32_t position) {
-        const Triangle& tri = m.triangles[position];
-        double t = 0;
-        if (!triangle_ray.crosses(m.vertex(tri, 0), m.vertex(tri, 1), m.vertex(tri, 2), t) ||
-            !(t > range.t_min))
-            return;
-        if (t < best ||
-            (t == best && best_triangle != nullptr && tri.place() < best_triangle->place())) {
-            best = t;
-            best_triangle = &tri;
-            best_position = position;
+    m.bvh.closest_leaves(ray, range.t_min, best, [&](std::uint32_t first, std::uint32_t count) {
+        const PackedTriangle* leaf = m.packed.data() + first;
+        for (std::uint32_t i = 0; i < count; ++i) {
+            const PackedTriangle& tri = leaf[i];
+            double t = 0;
+            if (!triangle_ray.crosses(tri.vertex[0], tri.vertex[1], tri.vertex[2], t) ||
+                !(t > range.t_min))
+                continue;
+            if (t < best || (t == best && best_position != kNone && tri.place < best_place)) {
+                best = t;
+                best_place = tri.place;
+                best_position = first + i;
+            }
         }
     });
-    if (best_triangle == nullptr) return false;
+    if (best_position == kNone) return false;
     hit = {best, static_cast<int>(best_position)};
     return true;
 }
 
 bool any(const Core& m, const Ray& ray, Interval range) {
     const TriangleRay triangle_ray(ray);
-    return m.bvh.any(ray, range.t_min, range.t_max, [&](std::uint32_t position) {
-        const Triangle& tri = m.triangles[position];
-        double t = 0;
-        return triangle_ray.crosses(m.vertex(tri, 0), m.vertex(tri, 1), m.vertex(tri, 2), t) &&
-               range.contains(t);
-    });
+    return m.bvh.any_leaves(ray, range.t_min, range.t_max,
+                            [&](std::uint32_t first, std::uint32_t count) {
+                                const PackedTriangle* leaf = m.packed.data() + first;
+                                for (std::uint32_t i = 0; i < count; ++i) {
+                                    double t = 0;
+                                    if (triangle_ray.crosses(leaf[i].vertex[0], leaf[i].vertex[1],
+                                                             leaf[i].vertex[2], t) &&
+                                        range.contains(t))
+                                        return true;
+                                }
+                                return false;
+                            });
 }
 
 Vec3 face(const Core& m, const Hit& hit) {

@@ -3,8 +3,8 @@
 // the labels and index reader their messages use.
 //
 // Storage: the vertices once, then per triangle three 32-bit indices and its place in the
-// file (16 bytes), plus the hierarchy's nodes (32 bytes each, one per at most a few
-// triangles).
+// file (16 bytes) and its packed copy for the leaf test (80 bytes), plus the hierarchy's
+// nodes (32 bytes per binary node and 128 per wide node, one per at most a few triangles).
 #pragma once
 
 #include <algorithm>
@@ -49,9 +49,19 @@ struct Triangle {
 };
 static_assert(sizeof(Triangle) == 16);
 
+// A triangle as the hierarchy's leaves test it: its vertices' positions in sorted order,
+// copied out of the vertex list so that a leaf's triangles lie side by side in memory and
+// are tested without an index, and its place among the file's triangles for ties.
+struct PackedTriangle {
+    Vec3 vertex[3];
+    std::uint32_t place;
+};
+static_assert(sizeof(PackedTriangle) == 80);
+
 struct Core {
     std::vector<Vec3> vertices;
-    std::vector<Triangle> triangles;  // in the hierarchy's leaf order; Hit::part indexes it
+    std::vector<Triangle> triangles;     // in the hierarchy's leaf order; Hit::part indexes it
+    std::vector<PackedTriangle> packed;  // the same triangles in the same order
     Bvh bvh;
     Bounds box;
 
