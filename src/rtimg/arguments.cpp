@@ -41,10 +41,41 @@ rt::ImageFormat output_format(const std::string& path) {
                      " from its extension: name it .ppm, .pgm, .png or .pfm"};
 }
 
-void write_samples(const std::string& path, const rt::SampleImage& image,
+bool names_pgm(const std::string& path) {
+    const std::string ext = std::filesystem::path(path).extension().string();
+    return ext == ".pgm" || ext == ".PGM";
+}
+
+// A .pgm name holds grey: an RGB image whose channels agree everywhere becomes one channel;
+// one with colour is refused rather than written as colour under a grey name.
+rt::SampleImage for_the_name(const std::string& path, rt::SampleImage image) {
+    if (!names_pgm(path) || image.channels == 1) return image;
+    if (image.channels != 3)
+        throw UsageError{rt::quote_token(path, rt::kShowWhole) +
+                         " names PGM, which holds grey, and the image has " +
+                         std::to_string(image.channels) + " channels: name it .ppm or .png"};
+    rt::SampleImage grey = image;
+    grey.channels = 1;
+    grey.bytes.clear();
+    const std::size_t sample_bytes = static_cast<std::size_t>(image.bits / 8);
+    for (std::size_t at = 0; at < image.bytes.size(); at += 3 * sample_bytes) {
+        for (std::size_t b = 0; b < sample_bytes; ++b)
+            if (image.bytes[at + b] != image.bytes[at + sample_bytes + b] ||
+                image.bytes[at + b] != image.bytes[at + 2 * sample_bytes + b])
+                throw UsageError{rt::quote_token(path, rt::kShowWhole) +
+                                 " names PGM, which holds grey, and the image has colour: name "
+                                 "it .ppm or .png"};
+        grey.bytes.insert(grey.bytes.end(), image.bytes.begin() + static_cast<std::ptrdiff_t>(at),
+                          image.bytes.begin() + static_cast<std::ptrdiff_t>(at + sample_bytes));
+    }
+    return grey;
+}
+
+void write_samples(const std::string& path, const rt::SampleImage& colour_image,
                    const rt::ImageMetadata& metadata, bool plain,
                    const std::vector<std::filesystem::path>& inputs) {
     const rt::ImageFormat format = output_format(path);
+    const rt::SampleImage image = for_the_name(path, colour_image);
     if (format == rt::ImageFormat::pfm)
         throw UsageError{rt::quote_token(path, rt::kShowWhole) +
                          ": this command writes PPM or PNG, not PFM"};

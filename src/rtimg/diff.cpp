@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "common/message_text.h"
 #include "rt/image_compare.h"
 #include "rtimg.h"
 
@@ -32,6 +33,9 @@ int diff(const std::vector<std::string>& args) {
     const double max_fraction =
         a.has("--max-fraction") ? parse_nonnegative("--max-fraction", a.values.at("--max-fraction"))
                                 : 0;
+    if (max_fraction > 1)
+        throw UsageError{"--max-fraction is a share of the pixels, from 0 to 1, got " +
+                         rt::quote_token(a.values.at("--max-fraction"))};
     if (a.has("--output")) output_format(a.values.at("--output"));  // a bad name fails first
     const rt::ImageFile first = rt::read_image_file(a.files[0]);
     const rt::ImageFile second = rt::read_image_file(a.files[1]);

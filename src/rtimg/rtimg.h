@@ -37,6 +37,11 @@ using rt::parse_nonnegative;
 rt::ImageFormat output_format(const std::string& path);
 // Writes samples in the format `path` names (PPM, plain PPM with `plain`, or PNG), safely
 // (rt::OutputFile), never over one of `inputs`.
+// Whether `path` ends in .pgm; and the image as a file of that name holds it: grey from
+// equal channels (refused with a message when it has colour), else as it is.
+bool names_pgm(const std::string& path);
+rt::SampleImage for_the_name(const std::string& path, rt::SampleImage image);
+
 void write_samples(const std::string& path, const rt::SampleImage& image,
                    const rt::ImageMetadata& metadata, bool plain,
                    const std::vector<std::filesystem::path>& inputs);
