@@ -222,7 +222,7 @@ TEST(errors_name_their_place) {
         {kCamera + "sphere { radius 1 }",
          "t.rts:2:1: sphere: missing field 'surface' (and no default_surface is set)"},
         {kCamera + "sphere {\n  radus 1 }",
-         "t.rts:3:3: a sphere has no field 'radus' (it has: "
+         "t.rts:3:3: a sphere has no field 'radus'; did you mean 'radius'? (it has: "
          "radius, centre, surface; translate, rotate, scale, "
          "frame)"},
         {kCamera + "sphere { radius <1, 2, 3> }",
@@ -261,6 +261,26 @@ TEST(errors_name_their_place) {
          "t.rts:1:43: camera size must be whole numbers from 1 to 16384, got 4.5"},
     };
     for (const auto& [source, message] : cases) CHECK_CONTAINS(error_of(source), message);
+}
+
+// A field given twice in one object's braces is an error naming both places (one inherited
+// from a named object is overridden, as always); mistyped names and fields get the nearest.
+TEST(repeated_fields_and_near_misses) {
+    CHECK_CONTAINS(error_of(kCamera + "torus { major 1 major 2 axis y minor 0.2 }"),
+                   "t.rts:2:17: 'major' is given twice in this torus (first at t.rts:2:9); give "
+                   "each field once");
+    CHECK_EQ(error_of(kCamera + "let r = surface { colour 1 kd 1 }\n"
+                                "sphere { radius 1 surface r { colour 0.5 } }"),
+             "");
+    CHECK_CONTAINS(error_of(kCamera + "let blue = surface { colour <0, 0, 1> kd 1 }\n"
+                                      "sphere { radius 1 surface bleu }"),
+                   "t.rts:3:27: unknown name 'bleu'; did you mean 'blue'?");
+    CHECK_CONTAINS(error_of(kCamera + "sphere { radius 1 surface { colour 1 kd 1 } centr x }"),
+                   "a sphere has no field 'centr'; did you mean 'centre'?");
+    // Nothing near: no suggestion.
+    const std::string far = error_of(kCamera + "sphere { radius 1 surface zzzzzz }");
+    CHECK_CONTAINS(far, "unknown name 'zzzzzz'");
+    CHECK(far.find("did you mean") == std::string::npos);
 }
 
 TEST(an_error_in_a_loop_names_the_pass) {

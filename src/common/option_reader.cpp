@@ -113,21 +113,22 @@ void OptionReader::no_value() const {
 }
 
 std::string nearest_word(std::string_view word, const std::vector<std::string>& candidates) {
-    // Levenshtein distance, one row at a time.
+    // Edit distance with adjacent transpositions counting one ("bleu" is one from "blue"),
+    // the optimal string alignment variant: words here are short, so a whole table is fine.
     const auto distance = [](std::string_view a, std::string_view b) {
-        std::vector<std::size_t> row(b.size() + 1);
-        for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-        for (std::size_t i = 1; i <= a.size(); ++i) {
-            std::size_t diagonal = row[0];
-            row[0] = i;
+        const std::size_t w = b.size() + 1;
+        std::vector<std::size_t> d((a.size() + 1) * w);
+        const auto at = [&](std::size_t i, std::size_t j) -> std::size_t& { return d[i * w + j]; };
+        for (std::size_t i = 0; i <= a.size(); ++i) at(i, 0) = i;
+        for (std::size_t j = 0; j <= b.size(); ++j) at(0, j) = j;
+        for (std::size_t i = 1; i <= a.size(); ++i)
             for (std::size_t j = 1; j <= b.size(); ++j) {
-                const std::size_t above = row[j];
-                row[j] = std::min(
-                    {row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-                diagonal = above;
+                at(i, j) = std::min({at(i - 1, j) + 1, at(i, j - 1) + 1,
+                                     at(i - 1, j - 1) + (a[i - 1] == b[j - 1] ? 0 : 1)});
+                if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+                    at(i, j) = std::min(at(i, j), at(i - 2, j - 2) + 1);
             }
-        }
-        return row[b.size()];
+        return at(a.size(), b.size());
     };
     std::string best;
     std::size_t best_distance = 3;

@@ -18,6 +18,8 @@ class Emitter {
 
     // A top-level object: a primitive, CSG, group, light, ambient light, camera or viewer.
     void place(const ObjectValue& object);
+    // A place in the sources as messages show it ("scene.rts:3:5").
+    std::string where(SourcePos pos) const { return files_.place(pos); }
     // 105: later primitives without a surface take this one (106).
     void default_surface(const ObjectValue& surface, SourcePos pos);
     // The end of the program: a scene without a camera is an error here, at `end`.

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <numbers>
 
+#include "common/option_reader.h"  // nearest_word
 #include "rtpp/parser.h"
 
 namespace rtpp {
@@ -207,7 +208,11 @@ void Evaluator::set_field(const Stmt& stmt, Target target) {
         if (kind.category != Category::camera && kind.category != Category::viewer &&
             kind.category != Category::ambient && kind.category != Category::background)
             known += std::string(known.empty() ? "" : "; ") + "translate, rotate, scale, frame";
-        fail(stmt.pos, std::string("a ") + kind.keyword + " has no field '" + name + "' (" +
+        std::vector<std::string> fields;
+        for (const FieldSpec& f : kind.fields) fields.emplace_back(f.name);
+        const std::string near = rt::nearest_word(name, fields);
+        fail(stmt.pos, std::string("a ") + kind.keyword + " has no field '" + name + "'" +
+                           (near.empty() ? "" : "; did you mean '" + near + "'?") + " (" +
                            (known.empty() ? "it has no fields" : "it has: " + known) + ")");
     }
     const std::size_t want = spec->type == FieldType::size ? 2 : 1;
@@ -260,8 +265,13 @@ void Evaluator::set_field(const Stmt& stmt, Target target) {
     if (!spec->repeated) {
         for (FieldValue& f : target->fields)
             if (f.spec == spec) {
+                if (f.set_here)
+                    fail(stmt.pos, std::string("'") + name + "' is given twice in this " +
+                                       kind.keyword + " (first at " + emitter_.where(f.pos) +
+                                       "); give each field once");
                 f.value = std::move(value);
                 f.pos = stmt.pos;
+                f.set_here = true;
                 return;
             }
     } else if (target->fields.size() >= static_cast<std::size_t>(limits_.list_items)) {
@@ -300,12 +310,22 @@ void Evaluator::transform(const Stmt& stmt, ObjectValue& target) {
     target.transform = compose(step, target.transform);
 }
 
+// "; did you mean 'blue'?" for the name in scope (or keyword) nearest to a mistyped one.
+std::string Evaluator::suggestion(const std::string& name) const {
+    std::vector<std::string> candidates{"pi"};
+    for (const auto& [known, value] : names_) candidates.push_back(known);
+    for (const Kind& kind : all_kinds()) candidates.emplace_back(kind.keyword);
+    const std::string near = rt::nearest_word(name, candidates);
+    return near.empty() ? "" : "; did you mean '" + near + "'?";
+}
+
 ObjectPtr Evaluator::build_object(const Expr& expr) {
     ObjectValue object;
     if (const Value* named = lookup(expr.text)) {
         if (named->type != Value::Type::object)
             fail(expr.pos, "'" + expr.text + "' is " + describe(*named) + ", not an object");
         object = *named->object;
+        for (FieldValue& field : object.fields) field.set_here = false;
     } else if (const Kind* kind = find_kind(expr.text)) {
         object.kind = kind;
     } else {
@@ -359,7 +379,7 @@ Value Evaluator::evaluate(const Expr& expr) {
             if (find_kind(expr.text) != nullptr)
                 fail(expr.pos,
                      "'" + expr.text + "' is an object kind: write " + expr.text + " { ... }");
-            fail(expr.pos, "unknown name '" + expr.text + "'");
+            fail(expr.pos, "unknown name '" + expr.text + "'" + suggestion(expr.text));
         }
         case Expr::Kind::vector:
             return Value::of(rt::Vec3{number_of(expr.args[0], "a vector's x"),

@@ -40,6 +40,7 @@ class Evaluator {
     rt::Vec3 vector_of(const Expr& expr, const std::string& what);
 
     const Value* lookup(const std::string& name) const;
+    std::string suggestion(const std::string& name) const;
     void bind(const std::string& name, Value value);
 
     const Limits& limits_;

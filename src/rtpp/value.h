@@ -36,6 +36,9 @@ struct FieldValue {
     const FieldSpec* spec;
     Value value;
     SourcePos pos;
+    // Set in the braces being read, not inherited from the named object this one copies: a
+    // second setting there is a mistake (major 1 major 2), an inherited one is overridden.
+    bool set_here = true;
 };
 
 struct ObjectValue {
