@@ -283,6 +283,17 @@ TEST(repeated_fields_and_near_misses) {
     CHECK(far.find("did you mean") == std::string::npos);
 }
 
+// A numeric scene given to rtpp is pointed to rt, as a readable one given to rt is to rtpp.
+TEST(a_numeric_scene_given_to_rtpp_gets_a_note) {
+    CHECK_EQ(error_of("102 0 0 5 0 0 0 1 0 0 0 1 0 8 6\n"),
+             std::string("t.rts:1:1: expected a statement (a field, an object, let, for, if or "
+                         "include), got '102'\nt.rts:1:1: note: this looks like rt's numeric "
+                         "scene format, which rt reads as it is: rt SCENE -o IMAGE (rtpp compiles "
+                         "the readable language)"));
+    // Inside braces a number is only out of place.
+    CHECK(error_of(kCamera + "group { 5 }").find("note:") == std::string::npos);
+}
+
 TEST(an_error_in_a_loop_names_the_pass) {
     // The body is the same on every pass, so the place alone does not say which failed.
     CHECK_EQ(error_of(kCamera + "for i = 0 to 3 {\n  for j = 0 to 1 {\n"

@@ -74,7 +74,7 @@ class Parser {
         tokens_ = tokenize(text, file, options_.limits);
         next_ = 0;
         Block block;
-        while (peek().kind != TokenKind::end) parse_statement(block);
+        while (peek().kind != TokenKind::end) parse_statement(block, true);
         return block;
     }
 
@@ -155,10 +155,17 @@ class Parser {
         return block;
     }
 
-    void parse_statement(Block& block) {
+    void parse_statement(Block& block, bool top_level = false) {
         if (accept(";")) return;
         const Token& first = peek();
         const SourcePos pos = first.pos;
+        // A number where a top-level statement starts is most likely rt's numeric format,
+        // which rt reads itself: say so, rather than only what was expected.
+        if (first.kind == TokenKind::number && top_level)
+            fail(pos, "expected a statement (a field, an object, let, for, if or include), got " +
+                          describe(first) + "\n" + files_.place(pos) +
+                          ": note: this looks like rt's numeric scene format, which rt reads as "
+                          "it is: rt SCENE -o IMAGE (rtpp compiles the readable language)");
         if (first.kind != TokenKind::name)
             fail(pos, "expected a statement (a field, an object, let, for, if or include), got " +
                           describe(first));
