@@ -18,8 +18,9 @@ const char* const kFlags = "--size 32x24 -q";
 
 // Runs make in the example's copy; returns its exit status.
 int make(const fs::path& dir, const std::string& arguments, const std::string& flags = kFlags) {
-    const int status = shell(join("cd '", dir.string(), "' && make ", arguments, " RT='", RT_BINARY,
-                                  "' RTFLAGS='", flags, "' >>make.log 2>&1"));
+    const int status =
+        shell(join("cd '", dir.string(), "' && make ", arguments, " RT='", RT_BINARY, "' RTPP='",
+                   RTPP_BINARY, "' RTFLAGS='", flags, "' >>make.log 2>&1"));
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
@@ -27,8 +28,8 @@ int make(const fs::path& dir, const std::string& arguments, const std::string& f
 // cannot say: it runs '+' lines, and rt does nothing under it, successfully.)
 bool out_of_date(const fs::path& dir, const std::string& flags = kFlags) {
     const fs::path log = dir / "plan.log";
-    shell(join("cd '", dir.string(), "' && make -n N=4 RT='", RT_BINARY, "' RTFLAGS='", flags,
-               "' >'", log.string(), "' 2>&1"));
+    shell(join("cd '", dir.string(), "' && make -n N=4 RT='", RT_BINARY, "' RTPP='", RTPP_BINARY,
+               "' RTFLAGS='", flags, "' >'", log.string(), "' 2>&1"));
     return read_file(log).find(" -M frames/") != std::string::npos;
 }
 
@@ -49,6 +50,9 @@ TEST(the_animation_example_renders_and_rerenders_what_changed) {
         CHECK_CONTAINS(read_file(frame).substr(0, 2), "P6");
         CHECK(fs::exists(dir / "frames" / join("frame-00", i, ".d")));
     }
+    // Each frame's scene is ball.rts with its own number: the ball moves between frames.
+    CHECK(read_file(dir / "frames" / "frame-000.in") != read_file(dir / "frames" / "frame-003.in"));
+    CHECK_CONTAINS(read_file(dir / "frames" / "frame-000.in"), "ball.rts");
     // Everything is up to date: make -n would run nothing.
     CHECK(!out_of_date(dir));
     // The texture changes: every frame is out of date (through the rules rt -M wrote), and

@@ -294,6 +294,33 @@ TEST(a_numeric_scene_given_to_rtpp_gets_a_note) {
     CHECK(error_of(kCamera + "group { 5 }").find("note:") == std::string::npos);
 }
 
+// -D NAME=VALUE: bound before the program, an expression of the language, and winning over
+// the program's own top-level let of the name (its default).
+TEST(defines_override_the_programs_defaults) {
+    const std::string source = kCamera +
+                               "let frame = 0\nsphere { radius 1 + frame / 10 centre <0, 0, -size> "
+                               "surface { colour 1 kd 1 } }\n";
+    rtpp::CompileOptions options;
+    options.defines = {{"size", "2 * 3"}, {"frame", "size - 1"}};
+    const std::string out = rtpp::compile(source + "", "t.rts", ".", options);
+    CHECK_CONTAINS(out, "\n1 1.5 0 0 -6 ");
+    // Without -D: the program's own default, and size is unknown.
+    CHECK_CONTAINS(error_of(source), "unknown name 'size'");
+    options.defines = {{"size", "2"}};
+    CHECK_CONTAINS(rtpp::compile(source, "t.rts", ".", options), "\n1 1 0 0 -2 ");
+    // Errors name the definition.
+    options.defines = {{"frame", "1 +"}};
+    CHECK_CONTAINS(error_of(source, options), "-D frame=1 +:1:");
+    options.defines = {{"for", "1"}};
+    CHECK_CONTAINS(error_of(source, options), "-D for=1: 'for' is a reserved word");
+    options.defines = {{"2x", "1"}};
+    CHECK_CONTAINS(error_of(source, options), "'2x' is not a name");
+    options.defines = {{"n", "1 sphere { radius 1 }"}};
+    CHECK_CONTAINS(error_of(source, options), "the value must be one expression");
+    options.defines = {{"sphere", "1"}};
+    CHECK_CONTAINS(error_of(source, options), "'sphere' is an object kind");
+}
+
 TEST(an_error_in_a_loop_names_the_pass) {
     // The body is the same on every pass, so the place alone does not say which failed.
     CHECK_EQ(error_of(kCamera + "for i = 0 to 3 {\n  for j = 0 to 1 {\n"

@@ -25,6 +25,11 @@ options:
                       (for standard input: rtpp --from nff < balls.nff)
   -I, --include DIR   look for included files in DIR after the including
                       file's own directory (repeatable, searched in order)
+  -D, --define NAME=VALUE
+                      bind NAME to VALUE (an expression of the language)
+                      before the scene runs; a top-level let of NAME in the
+                      scene takes this value instead (repeatable):
+                      rtpp -D frame=12 ball.rts
   -h, --help          print this help and exit
   -V, --version       print the version and exit
 
@@ -47,7 +52,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     CommandLine cl;
     bool have_input = false;
     std::optional<InputFormat> from;
-    rt::OptionReader options(args, "oI");
+    rt::OptionReader options(args, "oID");
     while (options.next()) {
         const std::string& arg = options.argument();
         if (!options.is_option()) {
@@ -76,6 +81,13 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
             const std::string dir = take_value();
             if (dir.empty()) throw UsageError{"-I needs a directory"};
             cl.include_dirs.push_back(dir);
+        } else if (arg == "-D" || arg == "--define") {
+            const std::string definition = take_value();
+            const std::size_t eq = definition.find('=');
+            if (eq == std::string::npos || eq == 0)
+                throw UsageError{"-D expects NAME=VALUE (such as -D frame=12), got " +
+                                 rt::quote_token(definition, rt::kShowWhole)};
+            cl.defines.emplace_back(definition.substr(0, eq), definition.substr(eq + 1));
         } else if (arg == "-h" || arg == "--help") {
             options.no_value();
             cl.help = true;

@@ -20,6 +20,7 @@ struct CommandLine {
     InputFormat from = InputFormat::rts;
     std::string output = "-";  // the numeric scene; "-" is standard output
     std::vector<std::string> include_dirs;
+    std::vector<std::pair<std::string, std::string>> defines;  // -D NAME=VALUE, in order
     bool help = false;
     bool version = false;
 };

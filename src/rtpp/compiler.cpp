@@ -1,5 +1,6 @@
 #include "rtpp/compiler.h"
 
+#include <cctype>
 #include <fstream>
 #include <iostream>
 #include <iterator>
@@ -11,6 +12,17 @@
 
 namespace rtpp {
 
+namespace {
+// A name as the language writes one: a letter or '_', then letters, digits and '_'.
+bool is_valid_name(const std::string& name) {
+    if (name.empty() || !(std::isalpha(static_cast<unsigned char>(name[0])) != 0 || name[0] == '_'))
+        return false;
+    for (const char c : name)
+        if (!(std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_')) return false;
+    return true;
+}
+}  // namespace
+
 std::string compile(const std::string& text, const std::string& name,
                     const std::filesystem::path& dir, const CompileOptions& options) {
     SourceFiles files;
@@ -20,6 +32,22 @@ std::string compile(const std::string& text, const std::string& name,
             parse_program(text, name, dir, files, {options.include_dirs, options.limits});
         Emitter emitter(files, options.limits, out);
         Evaluator evaluator(options.limits, emitter);
+        // Each definition is read as a one-line program of its own, named after the option,
+        // so that its errors say where they are: "-D frame=x:1:13: unknown name 'x'".
+        std::vector<Block> definitions;
+        for (const auto& [define_name, value] : options.defines) {
+            const std::string label = "-D " + define_name + "=" + value;
+            if (!is_valid_name(define_name))
+                throw CompileError(label + ": '" + define_name +
+                                   "' is not a name (a letter or '_', then letters, digits, '_')");
+            if (is_reserved_word(define_name))
+                throw CompileError(label + ": '" + define_name + "' is a reserved word");
+            definitions.push_back(parse_program("let " + define_name + " = " + value, label, dir,
+                                                files, {{}, options.limits}));
+            if (definitions.back().size() != 1)
+                throw CompileError(label + ": the value must be one expression");
+            evaluator.define(definitions.back().front());
+        }
         evaluator.run(program);
         // The end of the top-level file: where a missing camera is reported.
         int line = 1, column = 1;

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rtpp/limits.h"
@@ -13,6 +14,11 @@ namespace rtpp {
 struct CompileOptions {
     std::vector<std::filesystem::path> include_dirs;  // searched after the including file's own
     Limits limits;
+    // -D NAME=VALUE, in order: each VALUE an expression of the language (it may use the
+    // names defined before it), bound before the program runs; a top-level `let` of the same
+    // name in the program takes the defined value instead of its own, so a scene can give a
+    // default that the command line overrides (let frame = 0).
+    std::vector<std::pair<std::string, std::string>> defines;
 };
 
 // Compiles `text`, named `name` in messages and line markers, whose includes are resolved

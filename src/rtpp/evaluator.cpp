@@ -72,6 +72,17 @@ Evaluator::Evaluator(const Limits& limits, Emitter& emitter) : limits_(limits), 
 
 void Evaluator::run(const Block& program) { run_block(program, nullptr); }
 
+void Evaluator::define(const Stmt& definition) {
+    if (definition.kind != Stmt::Kind::let)
+        fail(definition.pos, "a definition is NAME=VALUE, VALUE an expression");
+    if (find_kind(definition.name) != nullptr)
+        fail(definition.pos, "'" + definition.name + "' is an object kind and cannot name a value");
+    Value value = evaluate(definition.args[0]);
+    // Visible to the later definitions and to the program (outside every scope).
+    names_.emplace_back(definition.name, value);
+    defined_.emplace_back(definition.name, std::move(value));
+}
+
 const Value* Evaluator::lookup(const std::string& name) const {
     for (auto it = names_.rbegin(); it != names_.rend(); ++it)
         if (it->first == name) return &it->second;
@@ -92,6 +103,10 @@ void Evaluator::run_statement(const Stmt& stmt, Target target) {
         case Stmt::Kind::let:
             if (find_kind(stmt.name) != nullptr)
                 fail(stmt.pos, "'" + stmt.name + "' is an object kind and cannot name a value");
+            // The command line's -D wins over the program's own top-level value.
+            if (target == nullptr)
+                for (const auto& [name, value] : defined_)
+                    if (name == stmt.name) return bind(stmt.name, value);
             bind(stmt.name, evaluate(stmt.args[0]));
             return;
         case Stmt::Kind::field:

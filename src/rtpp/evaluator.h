@@ -19,6 +19,9 @@ class Evaluator {
     Evaluator(const Limits& limits, Emitter& emitter);
 
     void run(const Block& program);
+    // A -D definition (a one-statement block `let NAME = VALUE`), bound before the program:
+    // a top-level let of NAME in it takes this value instead of its own.
+    void define(const Stmt& definition);
     // One expression on its own (for tests): names are those bound so far.
     Value evaluate(const Expr& expr);
 
@@ -45,7 +48,8 @@ class Evaluator {
 
     const Limits& limits_;
     Emitter& emitter_;
-    std::vector<std::pair<std::string, Value>> names_;  // innermost last
+    std::vector<std::pair<std::string, Value>> names_;    // innermost last
+    std::vector<std::pair<std::string, Value>> defined_;  // by -D, in order
     long iterations_ = 0;
     int depth_ = 0;
 };

@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
         }
         rtpp::CompileOptions options;
         for (const std::string& dir : cl.include_dirs) options.include_dirs.emplace_back(dir);
+        options.defines = cl.defines;
         return output.write(rtpp::compile_file(cl.input, options));
     });
 }
