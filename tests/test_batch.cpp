@@ -128,6 +128,22 @@ TEST(progress_lines_only_when_asked_when_stderr_is_not_a_terminal) {
     CHECK_EQ(run_rt(dir, "scene.in --progress -q -o out.ppm").err, "");
 }
 
+// -q silences warnings, notes and progress, but not what was asked for by name: -q --stats
+// prints the statistics alone (docs/cli.md says so).
+TEST(quiet_keeps_the_statistics_that_were_asked_for) {
+    const auto dir = work_dir("quiet_stats");
+    write_file(dir / "scene.in", scene_at(40, 30));
+    const RunResult r = run_rt(dir, "-q --stats --progress --size 60x30 scene.in -o out.ppm");
+    CHECK_EQ(r.status, 0);
+    CHECK_CONTAINS(r.err, "rt: stats: time: ");
+    CHECK_CONTAINS(r.err, "rt: stats: rays: ");
+    CHECK(r.err.find("warning") == std::string::npos);  // --size 60x30 would warn of its pixels
+    CHECK(r.err.find("%") == std::string::npos);        // no progress line
+    std::size_t lines = 0;
+    for (const char c : r.err) lines += c == '\n' ? 1 : 0;
+    CHECK_EQ(lines, 4u);
+}
+
 TEST(progress_formatting_by_hand) {
     CHECK_EQ(rt::format_duration(0), "0:00");
     CHECK_EQ(rt::format_duration(65.4), "1:05");
