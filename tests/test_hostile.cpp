@@ -9,27 +9,16 @@
 #include <cstdint>
 #include <streambuf>
 
+#include "batch/cost.h"
 #include "check.h"
 #include "cli_util.h"
-#include "batch/cost.h"
+#include "memory_checks.h"
 #include "rt/reader.h"
 #include "scene_util.h"
 
 using namespace rt;
 using namespace rt_test;
 namespace fs = std::filesystem;
-
-// ASan's shadow memory and quarantine make resident memory no measure of what rt allocates.
-#if defined(__SANITIZE_ADDRESS__)
-#define RT_MEASURES_MEMORY 0
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define RT_MEASURES_MEMORY 0
-#endif
-#endif
-#ifndef RT_MEASURES_MEMORY
-#define RT_MEASURES_MEMORY 1
-#endif
 
 namespace {
 
