@@ -23,11 +23,6 @@ namespace rt::file_mesh {
 
 namespace {
 
-struct FileMesh {
-    mesh_core::Core core;
-    std::vector<Vec3> normals;  // one per vertex, or none: flat
-};
-
 enum Mode : long { kFileNormals = 0, kFlat = 1, kSmooth = 2 };
 
 std::string place(const char* what, std::size_t index) {
@@ -49,7 +44,7 @@ void check_normals(const std::vector<Vec3>& normals) {
 }
 
 FileMeshShape make(const MeshFile& file, long mode, int threads) {
-    FileMesh mesh;
+    mesh_core::ShadedMesh mesh;  // normals: one per vertex, or none (flat)
     for (std::size_t i = 0; i < file.positions.size(); ++i)
         if (max_abs_component(file.positions[i]) > mesh_core::kMaxCoordinate)
             throw Error(place("vertex", i) + ": a coordinate is beyond +-" +
@@ -81,7 +76,7 @@ FileMeshShape make(const MeshFile& file, long mode, int threads) {
             }
         }
     }
-    made.shape = std::make_shared<const FileMesh>(std::move(mesh));
+    made.shape = std::make_shared<const mesh_core::ShadedMesh>(std::move(mesh));
     return made;
 }
 
@@ -93,36 +88,14 @@ ShapeData read(SceneReader& reader) {
         [mode, threads](const MeshFile& file) { return make(file, mode, threads); });
 }
 
-const FileMesh& mesh_of(const void* shape) { return *static_cast<const FileMesh*>(shape); }
-
-bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
-    return mesh_core::closest(mesh_of(shape).core, ray, range, hit);
-}
-
-bool intersect_any(const void* shape, const Ray& ray, Interval range, Hit&) {
-    return mesh_core::any(mesh_of(shape).core, ray, range);
-}
-
-Vec3 normal(const void* shape, const Vec3&, const Hit& hit) {
-    return mesh_core::face(mesh_of(shape).core, hit);
-}
-
-Vec3 shading_normal(const void* shape, const Vec3& point, const Hit& hit) {
-    const FileMesh& m = mesh_of(shape);
-    if (m.normals.empty()) return mesh_core::face(m.core, hit);
-    return mesh_core::blended_normal(m.core, m.normals, point, hit);
-}
-
-Bounds bounds(const void* shape) { return mesh_of(shape).core.box; }
-
 }  // namespace
 
-// A shadow ray stops at the first triangle it meets.
+// Everything but reading is the shaded mesh's (mesh_core.h), shared with the smooth mesh (16).
 extern const PrimitiveFunctions functions{.read = read,
-                                          .intersect = intersect,
-                                          .normal = normal,
-                                          .bounds = bounds,
-                                          .intersect_any = intersect_any,
-                                          .shading_normal = shading_normal};
+                                          .intersect = mesh_core::shaded::intersect,
+                                          .normal = mesh_core::shaded::normal,
+                                          .bounds = mesh_core::shaded::bounds,
+                                          .intersect_any = mesh_core::shaded::intersect_any,
+                                          .shading_normal = mesh_core::shaded::shading_normal};
 
 }  // namespace rt::file_mesh

@@ -137,4 +137,32 @@ Vec3 blended_normal(const Core& m, std::span<const Vec3> normals, const Vec3& po
     return s;
 }
 
+namespace shaded {
+
+namespace {
+const ShadedMesh& mesh_of(const void* shape) { return *static_cast<const ShadedMesh*>(shape); }
+}  // namespace
+
+bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
+    return closest(mesh_of(shape).core, ray, range, hit);
+}
+
+bool intersect_any(const void* shape, const Ray& ray, Interval range, Hit&) {
+    return any(mesh_of(shape).core, ray, range);
+}
+
+Vec3 normal(const void* shape, const Vec3&, const Hit& hit) {
+    return face(mesh_of(shape).core, hit);
+}
+
+Vec3 shading_normal(const void* shape, const Vec3& point, const Hit& hit) {
+    const ShadedMesh& m = mesh_of(shape);
+    if (m.normals.empty()) return face(m.core, hit);
+    return blended_normal(m.core, m.normals, point, hit);
+}
+
+Bounds bounds(const void* shape) { return mesh_of(shape).core.box; }
+
+}  // namespace shaded
+
 }  // namespace rt::mesh_core

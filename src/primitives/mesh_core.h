@@ -123,6 +123,23 @@ Vec3 face(const Core& core, const Hit& hit);
 Vec3 blended_normal(const Core& core, std::span<const Vec3> normals, const Vec3& point,
                     const Hit& hit);
 
+// A mesh with vertex normals for shading (16, and 15 where it is smooth): one normal per vertex,
+// or none (flat: the shading normal is the face normal).
+struct ShadedMesh {
+    Core core;
+    std::vector<Vec3> normals;
+};
+
+// The table functions of a ShadedMesh, which the smooth mesh (16) and the mesh from a file (15)
+// both use beside their own read function. A shadow ray stops at the first triangle it meets.
+namespace shaded {
+bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit);
+bool intersect_any(const void* shape, const Ray& ray, Interval range, Hit& hit);
+Vec3 normal(const void* shape, const Vec3& point, const Hit& hit);
+Vec3 shading_normal(const void* shape, const Vec3& point, const Hit& hit);
+Bounds bounds(const void* shape);
+}  // namespace shaded
+
 // Out of line: the part of build that does not depend on where the indices come from.
 void finish(Core& core, std::vector<Triangle>& triangles, std::vector<Bounds>& boxes, int threads);
 

@@ -4,8 +4,8 @@
 // is on. Shading uses the blend of the vertex normals instead: at a point with barycentric
 // weights (w0, w1, w2), normalise(w0 n0 + w1 n1 + w2 n2).
 //
-// The blend is the mesh core's (mesh_core::blended_normal), shared with the mesh from a file
-// (15).
+// The shape and every function but read are the mesh core's shaded mesh
+// (mesh_core::ShadedMesh), shared with the mesh from a file (15).
 #include <algorithm>
 #include <string>
 
@@ -17,17 +17,13 @@ namespace rt::smooth_mesh {
 
 namespace {
 
-struct SmoothMesh {
-    mesh_core::Core core;
-    std::vector<Vec3> normals;  // one per vertex, as written (non-zero, not necessarily unit)
-};
-
 ShapeData read(SceneReader& reader) {
     const long vertex_count = reader.whole("smooth mesh vertex count", 3, mesh_core::kMaxCount);
     const Location count_at = reader.next_location();
     const long triangle_count = reader.whole("smooth mesh triangle count", 1, mesh_core::kMaxCount);
 
-    SmoothMesh mesh;
+    // The normals as written: non-zero, not necessarily unit.
+    mesh_core::ShadedMesh mesh;
     const auto reserve = static_cast<std::size_t>(std::min(vertex_count, mesh_core::kMaxReserve));
     mesh.core.vertices.reserve(reserve);
     mesh.normals.reserve(reserve);
@@ -52,40 +48,17 @@ ShapeData read(SceneReader& reader) {
         reader.fail(count_at, "smooth mesh has no triangle with non-zero area (all " +
                                   std::to_string(triangle_count) + " are degenerate)");
     reader.count_skipped_triangles(skipped);
-    return std::make_shared<const SmoothMesh>(std::move(mesh));
+    return std::make_shared<const mesh_core::ShadedMesh>(std::move(mesh));
 }
-
-const mesh_core::Core& core(const void* shape) {
-    return static_cast<const SmoothMesh*>(shape)->core;
-}
-
-bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
-    return mesh_core::closest(core(shape), ray, range, hit);
-}
-
-bool intersect_any(const void* shape, const Ray& ray, Interval range, Hit&) {
-    return mesh_core::any(core(shape), ray, range);
-}
-
-Vec3 normal(const void* shape, const Vec3&, const Hit& hit) {
-    return mesh_core::face(core(shape), hit);
-}
-
-Vec3 shading_normal(const void* shape, const Vec3& point, const Hit& hit) {
-    const auto& m = *static_cast<const SmoothMesh*>(shape);
-    return mesh_core::blended_normal(m.core, m.normals, point, hit);
-}
-
-Bounds bounds(const void* shape) { return core(shape).box; }
 
 }  // namespace
 
-// A shadow ray stops at the first triangle it meets.
+// Everything but reading is the shaded mesh's (mesh_core.h), shared with the mesh from a file.
 extern const PrimitiveFunctions functions{.read = read,
-                                          .intersect = intersect,
-                                          .normal = normal,
-                                          .bounds = bounds,
-                                          .intersect_any = intersect_any,
-                                          .shading_normal = shading_normal};
+                                          .intersect = mesh_core::shaded::intersect,
+                                          .normal = mesh_core::shaded::normal,
+                                          .bounds = mesh_core::shaded::bounds,
+                                          .intersect_any = mesh_core::shaded::intersect_any,
+                                          .shading_normal = mesh_core::shaded::shading_normal};
 
 }  // namespace rt::smooth_mesh
