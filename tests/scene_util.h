@@ -1,7 +1,9 @@
 // Helpers for tests that build scenes and shapes from scene-format text.
 #pragma once
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <initializer_list>
 #include <optional>
 #include <sstream>
@@ -10,12 +12,25 @@
 #include "check.h"
 #include "rt/error.h"
 #include "rt/options.h"
+#include "rt/raster.h"
 #include "rt/reader.h"
 
 namespace rt_test {
 
 // A minimal viewer, so that scene text in tests can be just the objects under test.
 inline const char* const kTestViewer = "102  0 0 5  0 0 0  1 0 0  0 1 0  4 4\n";
+
+// Whether two rasters hold the same values to the bit (NaN payloads and -0 included).
+inline bool identical(const rt::Raster& a, const rt::Raster& b) {
+    if (a.width() != b.width() || a.height() != b.height()) return false;
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x)
+            for (std::size_t i = 0; i < rt::kSpectrumComponents; ++i)
+                if (std::bit_cast<std::uint64_t>(a.at(x, y)[i]) !=
+                    std::bit_cast<std::uint64_t>(b.at(x, y)[i]))
+                    return false;
+    return true;
+}
 
 inline rt::Scene parse_scene(const std::string& text) {
     std::istringstream in(text);

@@ -198,16 +198,8 @@ std::string from_file(int mode, const std::string& path) {
     return "15 " + std::to_string(mode) + ' ' + path + ' ' + kSurface;
 }
 
-bool same(const Raster& a, const Raster& b) {
-    if (a.width() != b.width() || a.height() != b.height()) return false;
-    for (int y = 0; y < a.height(); ++y)
-        for (int x = 0; x < a.width(); ++x)
-            if (!(a.at(x, y) == b.at(x, y))) return false;
-    return true;
-}
-
 // At the caller's line, so that a failure says which comparison it was.
-#define CHECK_SAME(a, b) CHECK(same((a), (b)))
+#define CHECK_SAME(a, b) CHECK(identical((a), (b)))
 
 }  // namespace
 
@@ -229,7 +221,7 @@ TEST(normals_in_the_file_render_as_the_smooth_mesh_and_mode_1_ignores_them) {
     write_file(dir / "smooth.obj", obj(m, true));
     const Raster smooth = render_in(dir, kSetting + inline_mesh(m, true));
     const Raster flat = render_in(dir, kSetting + inline_mesh(m, false));
-    CHECK(!same(smooth, flat));
+    CHECK(!identical(smooth, flat));
     for (const char* name : {"smooth.ply", "smooth.obj"}) {
         CHECK_SAME(render_in(dir, kSetting + from_file(0, name)), smooth);
         CHECK_SAME(render_in(dir, kSetting + from_file(2, name)), smooth);

@@ -2,8 +2,6 @@
 // to the store, once per pass; one given rows takes them instead of tracing them, and the
 // raster is bit for bit the one an uninterrupted render makes, whatever rows it had, with
 // adaptive supersampling, regions and any number of threads.
-#include <bit>
-#include <cstdint>
 #include <map>
 #include <mutex>
 #include <random>
@@ -52,17 +50,6 @@ class MemoryStore : public RowStore {
     std::mutex mutex_;
 };
 
-bool same_bits(const Raster& a, const Raster& b) {
-    if (a.width() != b.width() || a.height() != b.height()) return false;
-    for (int y = 0; y < a.height(); ++y)
-        for (int x = 0; x < a.width(); ++x)
-            for (std::size_t i = 0; i < kSpectrumComponents; ++i)
-                if (std::bit_cast<std::uint64_t>(a.at(x, y)[i]) !=
-                    std::bit_cast<std::uint64_t>(b.at(x, y)[i]))
-                    return false;
-    return true;
-}
-
 RenderOptions with(int threads, bool adaptive) {
     RenderOptions options;
     options.threads = threads;
@@ -82,7 +69,7 @@ TEST(every_row_is_handed_to_the_store_once_per_pass) {
         const Raster plain = render(scene, with(1, adaptive));
         const Raster stored = render_region(scene, with(3, adaptive), image_rect(scene.viewer),
                                             nullptr, nullptr, &store);
-        CHECK(same_bits(plain, stored));
+        CHECK(identical(plain, stored));
         // One row per pass and y, whole width; the one-ray pass only with -a.
         CHECK_EQ(store.handed.size(), adaptive ? 64u : 32u);
         int final_rows = 0;
@@ -119,7 +106,7 @@ TEST(a_render_resumed_from_any_rows_is_the_uninterrupted_one) {
                 RenderProgress progress;
                 const Raster again = render_region(scene, with(1 + trial, adaptive), region, &stats,
                                                    &progress, &resumed);
-                CHECK(same_bits(whole, again));
+                CHECK(identical(whole, again));
                 CHECK_EQ(resumed.restored, static_cast<int>(resumed.held.size()));
                 CHECK_EQ(resumed.held.size() + resumed.handed.size(), first.handed.size());
                 CHECK_EQ(progress.rows_done.load(), progress.rows_total.load());
