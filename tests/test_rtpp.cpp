@@ -21,15 +21,16 @@
 #include "rtpp/compiler.h"
 #include "rtpp/kinds.h"
 #include "rtpp/transform.h"
+#include "rtpp_util.h"
 
 namespace fs = std::filesystem;
 using rt_test::litter;
 using rt_test::read_file;
 using rt_test::write_file;
+using rtpp_test::error_of;
+using rtpp_test::kCamera;
 
 namespace {
-
-const std::string kCamera = "camera { position <0, 0, 5> look_at <0, 0, 0> fov 90 size 4, 4 }\n";
 
 // The compiled scene without its header and markers.
 std::string compile_body(const std::string& source) {
@@ -46,15 +47,6 @@ std::string last_line(const std::string& source) {
     const std::string body = compile_body(kCamera + source);
     const std::size_t end = body.size() - 1;
     return body.substr(body.rfind('\n', end - 1) + 1, end - body.rfind('\n', end - 1) - 1);
-}
-
-std::string error_of(const std::string& source, const rtpp::CompileOptions& options = {}) {
-    try {
-        rtpp::compile(source, "t.rts", ".", options);
-    } catch (const rtpp::CompileError& e) {
-        return e.what();
-    }
-    return "";
 }
 
 // The value an expression gives, written as an ambient light's intensity.

@@ -12,22 +12,14 @@
 #include "check.h"
 #include "cli_util.h"
 #include "rtpp/compiler.h"
+#include "rtpp_util.h"
 
 namespace fs = std::filesystem;
 using rt_test::write_file;
+using rtpp_test::error_of;
+using rtpp_test::kCamera;
 
 namespace {
-
-const std::string kCamera = "camera { position <0, 0, 5> look_at <0, 0, 0> fov 90 size 4, 4 }\n";
-
-std::string error_of(const std::string& source, const rtpp::CompileOptions& options = {}) {
-    try {
-        rtpp::compile(source, "t.rts", ".", options);
-    } catch (const rtpp::CompileError& e) {
-        return e.what();
-    }
-    return "";
-}
 
 // "first op first op ... first", n operands.
 std::string chain(const std::string& first, const std::string& op, int n) {
