@@ -93,14 +93,19 @@ void ProgressDisplay::run(std::stop_token stop) {
         return stop.stop_requested();
     };
     if (style_ == Style::terminal) {
+        // The interruption handler waits for a line being written, so it must not run here.
+        const interrupt::SignalsBlocked blocked;
         if (stopped_during(kTerminalDelay)) return;
         do {
             // Back to the start of the line, the new text cut to the terminal's width (a line
-            // that wraps cannot be rewritten in place), and the rest of the line cleared.
-            out_ << '\r' << fit_to_width(current_line(), terminal_columns()) << "\x1b[K"
-                 << std::flush;
+            // that wraps cannot be rewritten in place), and the rest of the line cleared; one
+            // write, so that nothing can come between its parts.
+            const std::string line =
+                '\r' + fit_to_width(current_line(), terminal_columns()) + "\x1b[K";
+            if (!interrupt::begin_terminal_line()) return;
+            out_ << line << std::flush;
             shown_ = true;
-            interrupt::set_terminal_line(true);
+            interrupt::end_terminal_line(true);
         } while (!stopped_during(kTerminalInterval));
         return;
     }
@@ -112,8 +117,11 @@ void ProgressDisplay::finish() {
     thread_.request_stop();
     thread_.join();
     if (style_ == Style::terminal) {
-        if (shown_) out_ << "\r\x1b[K" << std::flush;
-        interrupt::set_terminal_line(false);
+        const interrupt::SignalsBlocked blocked;
+        if (interrupt::begin_terminal_line()) {
+            if (shown_) out_ << "\r\x1b[K" << std::flush;
+            interrupt::end_terminal_line(false);
+        }
     } else {
         out_ << labelled(current_line()) << '\n' << std::flush;
     }

@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <limits.h>
 #include <pthread.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -33,9 +34,20 @@ constexpr int kHandled[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE};
 
 // "PROGRAM: interrupted\n", set before the handler is installed.
 char g_interrupted[64] = "rt: interrupted\n";
-// Whether a progress line is on the terminal (interrupt::set_terminal_line).
+// Whether a progress line is on the terminal, and whether it is being written
+// (interrupt::begin_terminal_line).
 std::atomic<bool> g_terminal_line{false};
+std::atomic<bool> g_terminal_writing{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "read in a signal handler");
+
+// Waits, for at most about a second (a terminal stopped by Ctrl-S must not hang the exit),
+// for a progress write in another thread to end.
+void wait_for_terminal_writer() {
+    for (int i = 0; i < 1000 && g_terminal_writing.load(); ++i) {
+        timespec pause{0, 1'000'000};
+        ::nanosleep(&pause, nullptr);
+    }
+}
 
 void write_stderr(const char* text) {
     std::size_t left = std::strlen(text);
@@ -57,6 +69,7 @@ extern "C" void on_signal(int sig) {
         give_back_tokens();
         // A reader that went away (SIGPIPE) is not news to the user.
         if (sig != SIGPIPE) {
+            wait_for_terminal_writer();
             if (g_terminal_line.load()) write_stderr("\r\x1b[K");
             write_stderr(g_interrupted);
         }
@@ -85,7 +98,19 @@ sigset_t handled_set() {
 
 }  // namespace
 
-void set_terminal_line(bool shown) { g_terminal_line.store(shown); }
+// Sequentially consistent on both sides: the writer stores "writing" then reads "handling",
+// the handler stores "handling" then reads "writing", so at least one of them sees the other.
+bool begin_terminal_line() {
+    g_terminal_writing.store(true);
+    if (g_handling.load() == 0) return true;
+    g_terminal_writing.store(false);
+    return false;
+}
+
+void end_terminal_line(bool shown) {
+    g_terminal_line.store(shown);
+    g_terminal_writing.store(false);
+}
 
 void install_handlers(std::string_view program) {
     const std::string_view tail = ": interrupted\n";

@@ -21,9 +21,14 @@ int register_temporary(const std::string& path);
 // The file was renamed or removed: the handler must leave that name alone.
 void forget_temporary(int slot);
 
-// A progress line is (or is no longer) on the terminal that standard error is: the handler
-// erases it before its message, so that "rt: interrupted" starts a clean line.
-void set_terminal_line(bool shown);
+// The progress line on the terminal that standard error is. The handler erases it before its
+// message, so that "rt: interrupted" starts a clean line, and the two never interleave: the
+// writer calls begin_terminal_line() first, which says false once a handler has taken the
+// terminal (write nothing then), and end_terminal_line(shown) when its write is complete, a
+// line now shown or not. The handler waits for a write in progress to end, so the writing
+// thread must block the handled signals (SignalsBlocked) while it writes.
+bool begin_terminal_line();
+void end_terminal_line(bool shown);
 
 // Jobserver tokens taken: the handler, or give_back_tokens(), writes them back to fd.
 inline constexpr int kMaxTokens = 1024;
@@ -33,7 +38,8 @@ int give_back_tokens();
 int tokens_held();
 
 // Blocks the handled signals in this thread while it lives, so that a token read or a file
-// created is registered before a signal can end rt. (Only the main thread runs then.)
+// created is registered before a signal can end rt, and so that the progress thread never
+// runs the handler that waits for its write (a signal then goes to another thread).
 class SignalsBlocked {
   public:
     SignalsBlocked();
