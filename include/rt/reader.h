@@ -20,6 +20,8 @@
 
 namespace rt {
 
+class Sha256;  // common/digest.h
+
 struct Image;
 struct MeshFile;
 class Lexer;
@@ -179,11 +181,12 @@ struct StageTimes {
 // Convenience wrappers: read a whole scene from a stream or a file ("-" for stdin) and build
 // its hierarchy on up to `threads` threads. With `times`, the seconds spent reading and
 // building are stored in it; with `inputs`, the textures and mesh files the scene read
-// (SceneReader::input_files()).
+// (SceneReader::input_files()); with `digest`, every byte of the scene file (or standard
+// input) is given to it as it is read.
 Scene read_scene(std::istream& in, const std::string& name,
                  const std::filesystem::path& base_dir = {}, int threads = 1,
                  StageTimes* times = nullptr, std::vector<SceneInput>* inputs = nullptr);
 Scene read_scene_file(const std::string& path, int threads = 1, StageTimes* times = nullptr,
-                      std::vector<SceneInput>* inputs = nullptr);
+                      std::vector<SceneInput>* inputs = nullptr, Sha256* digest = nullptr);
 
 }  // namespace rt

@@ -17,6 +17,7 @@ namespace rt {
 struct RenderProgress {
     std::atomic<std::uint64_t> rows_total{0};
     std::atomic<std::uint64_t> rows_done{0};
+    std::atomic<std::uint64_t> rows_restored{0};  // of rows_done: taken from a RowStore
     std::atomic<std::uint64_t> rays{0};
 };
 
@@ -55,6 +56,10 @@ inline PixelRect image_rect(const Viewer& v) { return {0, 0, v.xres, v.yres}; }
 Raster render_region(const Scene& scene, const RenderOptions& options, const PixelRect& region,
                      RenderStats* stats = nullptr, RenderProgress* progress = nullptr,
                      RowStore* rows = nullptr);
+
+// The pixels -a's one-ray pass covers for `region` of `image`: the region and a one-pixel
+// margin around it, within the image (adaptive decisions at the region's edges need them).
+PixelRect one_ray_rect(const PixelRect& region, const PixelRect& image);
 
 // The number of threads a render uses for RenderOptions::threads (0: one per hardware thread).
 int worker_threads(int requested);

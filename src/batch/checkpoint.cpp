@@ -14,8 +14,6 @@ namespace {
 constexpr std::string_view kRecordMagic = "RTCK";
 constexpr char kHeaderType = 'H';
 constexpr char kRowType = 'R';
-// A header larger than this is no header rt wrote: refused before anything is kept.
-constexpr std::uint32_t kMaxHeader = 1 << 20;
 // A row of at most 16384 pixels (rt's widest image), three values each.
 constexpr std::uint32_t kMaxRowValues = 3 * 16384;
 
@@ -68,7 +66,7 @@ CheckpointHeader parse_header(std::string_view text) {
         const std::string_view line = text.substr(0, end);
         const std::size_t colon = line.find(": ");
         if (colon == std::string_view::npos || end == std::string_view::npos)
-            throw Error("its header is not rt's (a line without 'key: value')");
+            throw CheckpointHeaderDamaged("its header is not rt's (a line without 'key: value')");
         header.emplace_back(std::string(line.substr(0, colon)),
                             std::string(line.substr(colon + 2)));
         text.remove_prefix(end + 1);
@@ -121,9 +119,9 @@ CheckpointContents read_checkpoint(std::string_view bytes) {
     if (bytes.substr(0, kCheckpointMagic.size()) != kCheckpointMagic)
         throw Error("it is not an rt checkpoint (it does not start with 'rt checkpoint 1')");
     Record header;
-    if (!record_at(bytes, kCheckpointMagic.size(), kMaxHeader, header) ||
+    if (!record_at(bytes, kCheckpointMagic.size(), kMaxCheckpointHeader, header) ||
         header.type != kHeaderType)
-        throw Error("its header is incomplete or damaged");
+        throw CheckpointHeaderDamaged("its header is incomplete or damaged");
     CheckpointContents contents;
     contents.header = parse_header(header.payload);
     std::size_t at = header.end;

@@ -17,6 +17,8 @@
 #include <utility>
 #include <vector>
 
+#include "rt/error.h"
+
 namespace rt {
 
 // Ordered key-value pairs: rt's version, the digests of the scene and of every file it
@@ -31,6 +33,8 @@ struct CheckpointRow {
 };
 
 inline constexpr std::string_view kCheckpointMagic = "rt checkpoint 1\n";
+// A header larger than this is no header rt wrote: refused before anything is kept.
+inline constexpr std::uint32_t kMaxCheckpointHeader = 1 << 20;
 
 std::string encode_checkpoint_start(const CheckpointHeader& header);  // the line and the header
 std::string encode_checkpoint_row(const CheckpointRow& row);
@@ -42,8 +46,14 @@ struct CheckpointContents {
     bool damaged = false;             // whether anything followed them
 };
 
-// Reads a checkpoint's bytes. Throws rt::Error when they are not a checkpoint (no magic line)
-// or its header record is incomplete or damaged: nothing of such a file can be trusted.
+// The file starts as a checkpoint does, but its header record is incomplete or damaged.
+struct CheckpointHeaderDamaged : Error {
+    using Error::Error;
+};
+
+// Reads a checkpoint's bytes. Throws rt::Error when they are not a checkpoint (no magic line),
+// CheckpointHeaderDamaged when its header record is incomplete or damaged: nothing of such a
+// file can be trusted.
 CheckpointContents read_checkpoint(std::string_view bytes);
 
 // What differs between the header a command would write and the one found, as "key: value

@@ -1,5 +1,6 @@
 #include "batch/cli.h"
 
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -111,6 +112,16 @@ RenderMode parse_mode(const std::string& text) {
     throw UsageError{"-m expects trace, depth, colour or normal, got " + quote_token(text)};
 }
 
+// The parts of the illumination model, each with the switch that turns it off.
+std::array<std::pair<bool, const char*>, 6> switch_names(const RenderOptions& r) {
+    return {{{r.ambient, "--no-ambient"},
+             {r.diffuse, "--no-diffuse"},
+             {r.specular, "--no-specular"},
+             {r.shadows, "--no-shadows"},
+             {r.reflection, "--no-reflection"},
+             {r.refraction, "--no-refraction"}}};
+}
+
 void set_input(CommandLine& cl, bool& have_input, const std::string& arg) {
     if (have_input)
         throw UsageError{"more than one scene file given (" + quote_token(cl.input, kShowWhole) +
@@ -164,6 +175,15 @@ options:
                       full image, each pixel exactly as the whole render has it;
                       the file records the region and the full size (PPM and
                       PNG only), for rtimg merge
+      --checkpoint FILE
+                      keep finished rows in FILE while rendering (flushed to disk
+                      every few seconds and when rt is interrupted); removed once
+                      the image is written. FILE must not exist yet, unless
+                      --resume is given
+      --resume        continue from --checkpoint FILE: render only the rows it
+                      lacks, for exactly the image an uninterrupted render gives;
+                      refused when FILE is for another scene or other options
+                      (without FILE, rt renders from the start and says so)
   -r, --read-only     read and check the scene, print a summary, render nothing
   -q, --quiet         print nothing on stderr but errors
       --progress      show progress even when stderr is not a terminal (a line
@@ -189,7 +209,8 @@ environment: MAKEFLAGS (GNU make's jobserver: see -j), RT_DEBUG=threads (print
 the thread count and jobserver tokens on standard error)
 
 exit status: 0 success, 1 scene or input/output error, 2 usage error; SIGINT,
-SIGTERM and SIGHUP remove the temporary file and end rt as killed by them
+SIGTERM and SIGHUP remove the temporary file (a checkpoint is flushed and kept)
+and end rt as killed by them
 )";
 }
 
@@ -254,6 +275,12 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
             cl.size = parse_size(take_value());
         } else if (arg == "--region") {
             cl.region = parse_region(take_value());
+        } else if (arg == "--checkpoint") {
+            cl.checkpoint = take_value();
+            if (cl.checkpoint.empty() || cl.checkpoint == "-")
+                throw UsageError{"--checkpoint needs a file name"};
+        } else if (arg == "--resume") {
+            flag(cl.resume, true);
         } else if (arg == "-r" || arg == "--read-only") {
             flag(cl.read_only, true);
         } else if (arg == "-q" || arg == "--quiet") {
@@ -289,6 +316,14 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
         if (cl.output == "-") throw UsageError{"-M needs -o FILE: the rule's target is the image"};
         if (cl.depfile == cl.output) throw UsageError{"-M and -o name the same file"};
     }
+    if (cl.resume && cl.checkpoint.empty())
+        throw UsageError{"--resume continues from a checkpoint: give --checkpoint FILE too"};
+    if (!cl.checkpoint.empty()) {
+        for (const auto& [other, what] :
+             {std::pair{cl.output, "-o"}, {cl.depfile, "-M"}, {cl.input, "the scene"}})
+            if (cl.checkpoint == other)
+                throw UsageError{std::string("--checkpoint and ") + what + " name the same file"};
+    }
     if (cl.render.adaptive_threshold && !have_samples) cl.render.samples = kDefaultAdaptiveSamples;
     cl.image.format = format ? *format : format_of_output(cl.output);
     if (cl.image.format == ImageFormat::pfm && cl.region)
@@ -296,6 +331,30 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     if (cl.image.format == ImageFormat::pfm && have_bits)
         throw UsageError{"--bits does not apply to PFM, which always holds 32-bit floats"};
     return cl;
+}
+
+std::vector<std::pair<std::string, std::string>> render_identity(const CommandLine& cl, int width,
+                                                                 int height,
+                                                                 const PixelRect& region) {
+    const RenderOptions& r = cl.render;
+    std::string switches;
+    for (const auto& [on, name] : switch_names(r)) {
+        if (on) continue;
+        if (!switches.empty()) switches += ' ';
+        switches += name;
+    }
+    return {
+        {"version", "rt " RT_VERSION},
+        {"size", std::to_string(width) + "x" + std::to_string(height)},
+        {"region", std::to_string(region.x0) + "," + std::to_string(region.x1) + "," +
+                       std::to_string(region.y0) + "," + std::to_string(region.y1)},
+        {"depth", std::to_string(r.max_depth)},
+        {"weight", exact_number(r.min_weight)},
+        {"mode", mode_name(r.mode)},
+        {"samples", std::to_string(r.samples)},
+        {"adaptive", r.adaptive_threshold ? exact_number(*r.adaptive_threshold) : "off"},
+        {"switches", switches.empty() ? "none" : switches},
+    };
 }
 
 std::optional<std::string> region_problem(const PixelRect& region, int width, int height) {
@@ -324,11 +383,7 @@ ImageMetadata image_metadata(const CommandLine& cl) {
     if (cl.size)
         options +=
             " --size " + std::to_string(cl.size->width) + "x" + std::to_string(cl.size->height);
-    const std::pair<bool, const char*> parts[] = {
-        {r.ambient, "--no-ambient"},       {r.diffuse, "--no-diffuse"},
-        {r.specular, "--no-specular"},     {r.shadows, "--no-shadows"},
-        {r.reflection, "--no-reflection"}, {r.refraction, "--no-refraction"}};
-    for (const auto& [on, name] : parts)
+    for (const auto& [on, name] : switch_names(r))
         if (!on) options += std::string(" ") + name;
     // PFM stores the raster's values: bits and gamma do not touch it.
     if (cl.image.format != ImageFormat::pfm)

@@ -31,6 +31,10 @@ struct CommandLine {
     bool format_given = false;  // -f was given (else the format comes from -o's name)
     bool metadata = true;       // --no-metadata turns it off
     std::string depfile;        // -M: where to write a make rule; empty for none
+    // --checkpoint: where finished rows are kept while rendering; empty for none. --resume
+    // continues from what it holds.
+    std::string checkpoint;
+    bool resume = false;
     bool read_only = false;
     bool quiet = false;     // -q: nothing on stderr but errors
     bool progress = false;  // --progress: progress lines even when stderr is not a terminal
@@ -46,6 +50,14 @@ CommandLine parse_command_line(const std::vector<std::string>& args);
 // (the scene file as named, "<stdin>" for standard input) and "Options" (every option that
 // changes pixels, with its value, defaults included), or nothing under --no-metadata.
 ImageMetadata image_metadata(const CommandLine& cl);
+
+// What identifies a render for its checkpoint, besides the digests of what it reads: rt's
+// version, the image's size, the region rendered and every option that changes pixels (not
+// -j, --no-bvh or the output's format, bits and gamma, which leave the raster as it is), as
+// "key: value" pairs in a fixed order.
+std::vector<std::pair<std::string, std::string>> render_identity(const CommandLine& cl,
+                                                                 int width, int height,
+                                                                 const PixelRect& region);
 
 // Why --region does not fit a width x height image, or nothing when it fits.
 std::optional<std::string> region_problem(const PixelRect& region, int width, int height);

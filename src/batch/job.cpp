@@ -15,10 +15,12 @@
 #include <system_error>
 #include <vector>
 
+#include "batch/checkpoint_store.h"
 #include "batch/cost.h"
 #include "batch/depfile.h"
 #include "batch/progress.h"
 #include "batch/statistics.h"
+#include "common/digest.h"
 #include "common/exit_status.h"
 #include "common/interrupt.h"
 #include "common/message_text.h"
@@ -151,14 +153,6 @@ class ClaimedOutputs {
         if (depfile_) depfile_->write_bytes(rule_);
     }
 
-  private:
-    static ImageEncoding encoding_of(const CommandLine& cl, const Viewer& viewer,
-                                     const PixelRect& region) {
-        ImageEncoding encoding = cl.image;
-        encoding.metadata = image_metadata(cl);
-        if (cl.region) add_region_metadata(encoding.metadata, region, viewer.xres, viewer.yres);
-        return encoding;
-    }
     // The scene first (empty for standard input), then its textures and mesh files.
     static std::vector<InputFile> inputs_of(const CommandLine& cl,
                                             const std::vector<SceneInput>& files) {
@@ -168,6 +162,14 @@ class ClaimedOutputs {
         return inputs;
     }
 
+  private:
+    static ImageEncoding encoding_of(const CommandLine& cl, const Viewer& viewer,
+                                     const PixelRect& region) {
+        ImageEncoding encoding = cl.image;
+        encoding.metadata = image_metadata(cl);
+        if (cl.region) add_region_metadata(encoding.metadata, region, viewer.xres, viewer.yres);
+        return encoding;
+    }
     ImageEncoding encoding_;
     std::vector<InputFile> inputs_;
     OutputFile image_;
@@ -182,11 +184,50 @@ std::string progress_label(const CommandLine& cl) {
     return cl.input == "-" ? "<stdin>" : show_token(cl.input, kShowWhole);
 }
 
+// The name by which the checkpoint records a file the scene reads: as the scene names it
+// (relative to the scene's directory) where it can, so that a moved project still resumes.
+std::string recorded_name(const fs::path& path, const fs::path& scene_dir) {
+    if (!scene_dir.empty()) {
+        const fs::path relative = path.lexically_relative(scene_dir);
+        if (!relative.empty() && *relative.begin() != "..") return relative.string();
+    }
+    return path.string();
+}
+
+// --checkpoint: what identifies this render (the options, and the digests of the scene and of
+// every file it read), and which rows each pass renders.
+CheckpointPlan checkpoint_plan(const CommandLine& cl, const Viewer& viewer, const PixelRect& region,
+                               const std::vector<SceneInput>& files, Sha256& scene_digest) {
+    CheckpointPlan plan;
+    plan.path = cl.checkpoint;
+    plan.resume = cl.resume;
+    plan.quiet = cl.quiet;
+    plan.header = render_identity(cl, viewer.xres, viewer.yres, region);
+    plan.header.emplace_back("scene", "sha256 " + to_hex(scene_digest.finish()));
+    const fs::path scene_dir =
+        cl.input == "-" ? fs::current_path() : fs::path(cl.input).parent_path();
+    std::size_t n = 0;
+    for (const SceneInput& file : files) {
+        std::string role = file.role;
+        if (role.starts_with("the ")) role.erase(0, 4);
+        plan.header.emplace_back("input " + std::to_string(++n),
+                                 role + " " +
+                                     quote_token(recorded_name(file.path, scene_dir), kShowWhole) +
+                                     " sha256 " + sha256_file_hex(file.path));
+    }
+    plan.inputs = ClaimedOutputs::inputs_of(cl, files);
+    if (cl.output != "-") plan.outputs.push_back(cl.output);
+    if (!cl.depfile.empty()) plan.outputs.push_back(cl.depfile);
+    plan.rows = region;
+    if (cl.render.adaptive_threshold) plan.one_ray_rows = one_ray_rect(region, image_rect(viewer));
+    return plan;
+}
+
 // The render, with a progress display on standard error when it is a terminal or --progress
-// asks for one (never under -q).
+// asks for one (never under -q), and through the checkpoint when there is one.
 Raster render_with_progress(const CommandLine& cl, const Scene& scene, const RenderOptions& options,
-                            const PixelRect& region, RunStatistics& statistics) {
-    RenderProgress progress;
+                            const PixelRect& region, RunStatistics& statistics,
+                            RenderProgress& progress, RowStore* rows) {
     std::optional<ProgressDisplay> display;
     if (!cl.quiet && (cl.progress || isatty(STDERR_FILENO) != 0))
         display.emplace(progress,
@@ -194,7 +235,7 @@ Raster render_with_progress(const CommandLine& cl, const Scene& scene, const Ren
                                                    : ProgressDisplay::Style::lines,
                         std::cerr, progress_label(cl));
     const auto start = Clock::now();
-    Raster image = render_region(scene, options, region, &statistics.rays, &progress);
+    Raster image = render_region(scene, options, region, &statistics.rays, &progress, rows);
     statistics.times.render = seconds_since(start);
     if (display) display->finish();
     return image;
@@ -242,7 +283,9 @@ int run_job(const CommandLine& cl, int threads) try {
     if (cl.input == "-" && isatty(STDIN_FILENO) != 0 && !cl.quiet)
         std::cerr << "rt: reading the scene from the terminal; end it with Ctrl-D (or give a "
                      "file: rt scene.in, rt < scene.in)\n";
-    Scene scene = read_scene_file(cl.input, threads, &statistics.times, &files);
+    Sha256 scene_digest;
+    Scene scene = read_scene_file(cl.input, threads, &statistics.times, &files,
+                                  cl.checkpoint.empty() ? nullptr : &scene_digest);
     const PixelRect region = fit_command_line(cl, scene.viewer);
     show_notes(cl, scene);
     warn_about_redirected_format(cl);
@@ -251,8 +294,20 @@ int run_job(const CommandLine& cl, int threads) try {
     ClaimedOutputs outputs(cl, scene.viewer, region, files);
     RenderOptions options = cl.render;
     options.threads = threads;
-    const Raster image = render_with_progress(cl, scene, options, region, statistics);
+    RenderProgress progress;
+    std::optional<CheckpointStore> checkpoint;
+    if (!cl.checkpoint.empty())
+        checkpoint.emplace(checkpoint_plan(cl, scene.viewer, region, files, scene_digest),
+                           &progress);
+    const Raster image = render_with_progress(cl, scene, options, region, statistics, progress,
+                                              checkpoint ? &*checkpoint : nullptr);
     outputs.write(image, statistics.times);
+    if (checkpoint) {
+        checkpoint->remove();
+        statistics.checkpoint = true;
+        statistics.rows = progress.rows_total.load();
+        statistics.rows_resumed = checkpoint->rows_resumed();
+    }
     if (cl.stats) report_statistics(statistics, scene, options, region);
     return kExitOk;
 } catch (const std::system_error& e) {

@@ -32,13 +32,15 @@ std::string format_duration(double seconds) {
     return text;
 }
 
-std::string format_progress(double fraction, double rays_per_second, double elapsed_seconds) {
+std::string format_progress(double fraction, double rays_per_second, double elapsed_seconds,
+                            double resumed) {
     char head[64];
     std::snprintf(head, sizeof head, "%3.0f%%  %.1f Mrays/s  ",
                   std::floor(100 * std::clamp(fraction, 0.0, 1.0)), rays_per_second / 1e6);
     std::string line = head + format_duration(elapsed_seconds) + " elapsed";
-    if (fraction > 0 && fraction < 1)
-        line += "  " + format_duration(elapsed_seconds * (1 - fraction) / fraction) + " left";
+    if (fraction > resumed && fraction < 1)
+        line += "  " + format_duration(elapsed_seconds * (1 - fraction) / (fraction - resumed)) +
+                " left";
     return line;
 }
 
@@ -78,11 +80,14 @@ std::string ProgressDisplay::current_line() const {
     const std::uint64_t done = progress_.rows_done.load(std::memory_order_relaxed);
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    const double fraction = total > 0 ? static_cast<double>(done) / static_cast<double>(total) : 0;
+    const std::uint64_t restored = progress_.rows_restored.load(std::memory_order_relaxed);
+    const auto share = [&](std::uint64_t rows) {
+        return total > 0 ? static_cast<double>(rows) / static_cast<double>(total) : 0.0;
+    };
     const double rate =
         elapsed > 0 ? static_cast<double>(progress_.rays.load(std::memory_order_relaxed)) / elapsed
                     : 0;
-    return "rt: " + format_progress(fraction, rate, elapsed);
+    return "rt: " + format_progress(share(done), rate, elapsed, share(restored));
 }
 
 void ProgressDisplay::run(std::stop_token stop) {

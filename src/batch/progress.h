@@ -16,8 +16,10 @@ namespace rt {
 // "0:07", "1:05:09": whole seconds, as a clock shows them.
 std::string format_duration(double seconds);
 // "42%  12.3 Mrays/s  0:05 elapsed  0:07 left"; the time left is left out until it can be
-// estimated (fraction 0).
-std::string format_progress(double fraction, double rays_per_second, double elapsed_seconds);
+// estimated (fraction 0). Of `fraction`, `resumed` was done before this run (rows from a
+// checkpoint, which took no time): the time left is estimated from the rest.
+std::string format_progress(double fraction, double rays_per_second, double elapsed_seconds,
+                            double resumed = 0);
 // The line cut to fit a terminal `columns` wide without wrapping (one column is left free, as
 // a terminal wraps when the last one is written); 0 columns (unknown) leaves it whole.
 std::string fit_to_width(std::string line, int columns);

@@ -46,7 +46,11 @@ std::string format_statistics(const RunStatistics& s) {
            line("scene: %s, %s; %s; peak memory %.1f MiB", counted(s.objects, "object").c_str(),
                 counted(s.lights, "light").c_str(),
                 counted(static_cast<std::size_t>(s.threads), "thread").c_str(),
-                static_cast<double>(s.peak_memory_bytes) / (1024 * 1024));
+                static_cast<double>(s.peak_memory_bytes) / (1024 * 1024)) +
+           (s.checkpoint
+                ? line("checkpoint: %llu of %llu rows resumed, %llu rendered",
+                       count(s.rows_resumed), count(s.rows), count(s.rows - s.rows_resumed))
+                : std::string());
 }
 
 }  // namespace rt

@@ -17,6 +17,10 @@ struct RunStatistics {
     std::size_t objects = 0;
     std::size_t lights = 0;
     std::uint64_t peak_memory_bytes = 0;
+    // --checkpoint: the rows (of both passes under -a) and how many came from the file.
+    bool checkpoint = false;
+    std::uint64_t rows = 0;
+    std::uint64_t rows_resumed = 0;
 };
 
 // The process's peak resident memory so far, in bytes (0 where the system does not say).

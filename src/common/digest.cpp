@@ -1,6 +1,12 @@
 #include "common/digest.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstring>
+
+#include "rt/error.h"
 
 namespace rt {
 
@@ -101,6 +107,26 @@ std::string sha256_hex(std::string_view bytes) {
     Sha256 hash;
     hash.update(bytes);
     return to_hex(hash.finish());
+}
+
+std::string sha256_file_hex(const std::filesystem::path& path) {
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+    if (fd < 0) throw Error(path.string() + ": cannot read it again: " + std::strerror(errno));
+    Sha256 digest;
+    char buffer[1 << 16];
+    for (;;) {
+        const ssize_t n = ::read(fd, buffer, sizeof buffer);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) {
+            const int error = errno;
+            ::close(fd);
+            throw Error(path.string() + ": cannot read it again: " + std::strerror(error));
+        }
+        if (n == 0) break;
+        digest.update({buffer, static_cast<std::size_t>(n)});
+    }
+    ::close(fd);
+    return to_hex(digest.finish());
 }
 
 }  // namespace rt

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <string_view>
 
@@ -30,5 +31,7 @@ class Sha256 {
 std::string sha256_hex(std::string_view bytes);
 // The same for a digest already computed.
 std::string to_hex(const std::array<std::uint8_t, 32>& digest);
+// The digest of a file's bytes; throws rt::Error naming the file when it cannot be read.
+std::string sha256_file_hex(const std::filesystem::path& path);
 
 }  // namespace rt

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cstring>
 
+#include "common/digest.h"
 #include "rt/error.h"
 
 namespace rt {
@@ -31,6 +32,7 @@ FdBuf::int_type FdBuf::underflow() {
         return traits_type::eof();
     }
     consumed_ += got;
+    if (digest_ != nullptr) digest_->update({buffer_.get(), static_cast<std::size_t>(got)});
     setg(buffer_.get(), buffer_.get(), buffer_.get() + got);
     return traits_type::to_int_type(*gptr());
 }

@@ -10,6 +10,8 @@
 
 namespace rt {
 
+class Sha256;  // common/digest.h
+
 class FdBuf : public std::streambuf {
   public:
     // `what` names the input in the error a failed read throws: rt::Error("<what>: <reason>").
@@ -21,6 +23,8 @@ class FdBuf : public std::streambuf {
 
     // Bytes handed out so far.
     std::int64_t position() const { return consumed_ - (egptr() - gptr()); }
+    // Every byte read from now on is also given to `digest` (none when null).
+    void digest_into(Sha256* digest) { digest_ = digest; }
 
   protected:
     int_type underflow() override;
@@ -34,6 +38,7 @@ class FdBuf : public std::streambuf {
     std::unique_ptr<char[]> buffer_;
     std::int64_t consumed_ = 0;  // bytes read from the descriptor
     bool at_end_ = false;        // read() has returned 0
+    Sha256* digest_ = nullptr;
 };
 
 }  // namespace rt

@@ -40,10 +40,14 @@ std::atomic<bool> g_terminal_line{false};
 std::atomic<bool> g_terminal_writing{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "read in a signal handler");
 
-// Waits, for at most about a second (a terminal stopped by Ctrl-S must not hang the exit),
-// for a progress write in another thread to end.
-void wait_for_terminal_writer() {
-    for (int i = 0; i < 1000 && g_terminal_writing.load(); ++i) {
+// The checkpoint file, and whether a record is being written to it.
+std::atomic<int> g_checkpoint_fd{-1};
+std::atomic<bool> g_checkpoint_writing{false};
+
+// Waits, for at most about a second (a terminal stopped by Ctrl-S, a stalled disk must not
+// hang the exit), for a write in another thread to end.
+void wait_for_writer(const std::atomic<bool>& writing) {
+    for (int i = 0; i < 1000 && writing.load(); ++i) {
         timespec pause{0, 1'000'000};
         ::nanosleep(&pause, nullptr);
     }
@@ -67,9 +71,13 @@ extern "C" void on_signal(int sig) {
         for (int i = 0; i < kSlots; ++i)
             if (g_slot_state[i].exchange(kFree) == kArmed) ::unlink(g_paths[i]);
         give_back_tokens();
+        if (const int fd = g_checkpoint_fd.load(); fd >= 0) {
+            wait_for_writer(g_checkpoint_writing);
+            ::fdatasync(fd);
+        }
         // A reader that went away (SIGPIPE) is not news to the user.
         if (sig != SIGPIPE) {
-            wait_for_terminal_writer();
+            wait_for_writer(g_terminal_writing);
             if (g_terminal_line.load()) write_stderr("\r\x1b[K");
             write_stderr(g_interrupted);
         }
@@ -111,6 +119,10 @@ void end_terminal_line(bool shown) {
     g_terminal_line.store(shown);
     g_terminal_writing.store(false);
 }
+
+void set_checkpoint(int fd) { g_checkpoint_fd.store(fd); }
+void begin_checkpoint_write() { g_checkpoint_writing.store(true); }
+void end_checkpoint_write() { g_checkpoint_writing.store(false); }
 
 void install_handlers(std::string_view program) {
     const std::string_view tail = ": interrupted\n";

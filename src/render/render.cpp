@@ -17,12 +17,6 @@ int worker_threads(int requested) {
 
 namespace {
 
-// This rectangle grown by one pixel on every side, but kept within `bounds`.
-PixelRect with_margin(const PixelRect& r, const PixelRect& bounds) {
-    return {std::max(r.x0 - 1, bounds.x0), std::max(r.y0 - 1, bounds.y0),
-            std::min(r.x1 + 1, bounds.x1), std::min(r.y1 + 1, bounds.y1)};
-}
-
 // A raster that holds the pixels of `rect` only, addressed by full-image coordinates: a
 // region's pixels are computed at their own (x, y), so they are the whole render's pixels.
 class Window {
@@ -124,7 +118,7 @@ bool needs_supersampling(const Window& one_ray, const PixelRect& known, int x, i
 // as the whole image does.
 void render_adaptive(std::vector<Tracer>& tracers, const PixelRect& rect, const PixelRect& image,
                      double threshold, Window& raster, RenderProgress* progress, RowStore* store) {
-    const PixelRect known = with_margin(rect, image);
+    const PixelRect known = one_ray_rect(rect, image);
     // The one-ray pass and the grid pass trace; deciding is quick and not counted.
     if (progress != nullptr)
         progress->rows_total.store(
@@ -166,6 +160,11 @@ Raster render(const Scene& scene, const RenderOptions& options, RenderStats* sta
     return render_region(scene, options, image_rect(scene.viewer), stats, progress);
 }
 
+PixelRect one_ray_rect(const PixelRect& r, const PixelRect& image) {
+    return {std::max(r.x0 - 1, image.x0), std::max(r.y0 - 1, image.y0),
+            std::min(r.x1 + 1, image.x1), std::min(r.y1 + 1, image.y1)};
+}
+
 int render_threads(const RenderOptions& options, const PixelRect& region) {
     return std::clamp(worker_threads(options.threads), 1, region.height());
 }
@@ -179,7 +178,7 @@ Raster render_region(const Scene& scene, const RenderOptions& options, const Pix
     // One tracer per thread, each counting its own rays; merged once all have joined.
     std::vector<Tracer> tracers(static_cast<std::size_t>(threads), Tracer(scene, options));
     // Adaptive decisions need the one-ray values of a margin around the region.
-    const PixelRect canvas = options.adaptive_threshold ? with_margin(region, image) : region;
+    const PixelRect canvas = options.adaptive_threshold ? one_ray_rect(region, image) : region;
     Window raster(canvas);
     if (options.adaptive_threshold) {
         render_adaptive(tracers, region, image, *options.adaptive_threshold, raster, progress,

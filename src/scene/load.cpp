@@ -31,7 +31,7 @@ Scene read_scene(std::istream& in, const std::string& name, const std::filesyste
 }
 
 Scene read_scene_file(const std::string& path, int threads, StageTimes* times,
-                      std::vector<SceneInput>* inputs) {
+                      std::vector<SceneInput>* inputs, Sha256* digest) {
     // Read through a descriptor, so that a read error is reported as one, with its reason,
     // rather than taken for the end of the scene.
     if (path == "-") {
@@ -40,6 +40,7 @@ Scene read_scene_file(const std::string& path, int threads, StageTimes* times,
             throw Error(std::string("<stdin>: cannot read the scene from standard input: ") +
                         std::strerror(errno));
         FdBuf buffer(0, "<stdin>: cannot read the scene", false);
+        buffer.digest_into(digest);
         std::istream in(&buffer);
         return read_scene(in, "<stdin>", std::filesystem::current_path(), threads, times, inputs);
     }
@@ -49,6 +50,7 @@ Scene read_scene_file(const std::string& path, int threads, StageTimes* times,
     const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
     if (fd < 0) throw Error(path + ": cannot open scene file: " + std::strerror(errno));
     FdBuf buffer(fd, path + ": cannot read the scene", true);
+    buffer.digest_into(digest);
     std::istream in(&buffer);
     return read_scene(in, path, std::filesystem::path(path).parent_path(), threads, times,
                       inputs);
