@@ -71,7 +71,7 @@ CheckpointStore::CheckpointStore(CheckpointPlan plan, RenderProgress* progress)
         if ((exists && ::stat(output.c_str(), &out) == 0 && same_file(st, out)) ||
             fs::weakly_canonical(path, ec) == fs::weakly_canonical(output, ec))
             throw Error(located(path, "is also an output of this render (" +
-                                          show_token(output, kShowWhole) +
+                                          quote_token(output, kShowWhole) +
                                           "): give the checkpoint a name of its own"));
     }
     if (exists)
@@ -215,7 +215,7 @@ void CheckpointStore::finished(int pass, int y, int x0, int x1, const double* va
         if (broken_) return;
         // A signal's handler waits for this record, so it must run on another thread.
         const interrupt::SignalsBlocked blocked;
-        interrupt::begin_checkpoint_write();
+        if (!interrupt::begin_checkpoint_write()) return;  // rt is ending: the file is final
         append(record);
         interrupt::end_checkpoint_write();
     }

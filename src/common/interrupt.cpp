@@ -104,16 +104,18 @@ sigset_t handled_set() {
     return set;
 }
 
-}  // namespace
-
 // Sequentially consistent on both sides: the writer stores "writing" then reads "handling",
 // the handler stores "handling" then reads "writing", so at least one of them sees the other.
-bool begin_terminal_line() {
-    g_terminal_writing.store(true);
+bool begin_guarded_write(std::atomic<bool>& writing) {
+    writing.store(true);
     if (g_handling.load() == 0) return true;
-    g_terminal_writing.store(false);
+    writing.store(false);
     return false;
 }
+
+}  // namespace
+
+bool begin_terminal_line() { return begin_guarded_write(g_terminal_writing); }
 
 void end_terminal_line(bool shown) {
     g_terminal_line.store(shown);
@@ -121,7 +123,7 @@ void end_terminal_line(bool shown) {
 }
 
 void set_checkpoint(int fd) { g_checkpoint_fd.store(fd); }
-void begin_checkpoint_write() { g_checkpoint_writing.store(true); }
+bool begin_checkpoint_write() { return begin_guarded_write(g_checkpoint_writing); }
 void end_checkpoint_write() { g_checkpoint_writing.store(false); }
 
 void install_handlers(std::string_view program) {

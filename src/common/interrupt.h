@@ -31,11 +31,12 @@ bool begin_terminal_line();
 void end_terminal_line(bool shown);
 
 // The checkpoint being written (--checkpoint), or -1 for none: the handler waits for a record
-// being written to end (the writing thread must block the handled signals meanwhile) and
-// then flushes the file to disk (fdatasync) before rt ends, so that every row finished is
-// kept. The file itself stays: it is what a resumed render continues from.
+// being written to end (the writing thread must block the handled signals meanwhile), lets
+// no other begin (begin_checkpoint_write() says false then: write nothing) and flushes the
+// file to disk (fdatasync) before rt ends, so that it ends with the last row finished,
+// complete. The file itself stays: it is what a resumed render continues from.
 void set_checkpoint(int fd);
-void begin_checkpoint_write();
+bool begin_checkpoint_write();
 void end_checkpoint_write();
 
 // Jobserver tokens taken: the handler, or give_back_tokens(), writes them back to fd.
