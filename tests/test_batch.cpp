@@ -152,6 +152,10 @@ TEST(progress_formatting_by_hand) {
     CHECK_EQ(rt::format_progress(0.25, 12.34e6, 10), " 25%  12.3 Mrays/s  0:10 elapsed  0:30 left");
     CHECK_EQ(rt::format_progress(1, 1e6, 62), "100%  1.0 Mrays/s  1:02 elapsed");
     CHECK_EQ(rt::format_progress(0, 0, 0), "  0%  0.0 Mrays/s  0:00 elapsed");
+    // Resumed: 60 % came from a checkpoint, 20 % more took 10 s, so the last 20 % take 10 s;
+    // nothing is estimated before this run has done anything.
+    CHECK_EQ(rt::format_progress(0.8, 1e6, 10, 0.6), " 80%  1.0 Mrays/s  0:10 elapsed  0:10 left");
+    CHECK_EQ(rt::format_progress(0.6, 0, 1, 0.6), " 60%  0.0 Mrays/s  0:01 elapsed");
 }
 
 TEST(render_publishes_every_row_and_ray) {

@@ -144,8 +144,9 @@ bool CheckpointStore::resume_from_file() {
     try {
         contents = read_checkpoint(bytes);
     } catch (const CheckpointHeaderDamaged& e) {
-        std::cerr << "rt: warning: " << located(path, e.what())
-                  << ", so nothing in it can be used: rendering from the start\n";
+        if (!plan_.quiet)
+            std::cerr << "rt: warning: " << located(path, e.what())
+                      << ", so nothing in it can be used: rendering from the start\n";
         ::close(fd_);
         fd_ = -1;
         return false;
@@ -260,6 +261,7 @@ void CheckpointStore::sync_now_and_then() {
 void CheckpointStore::warn_once(const std::string& why) {
     if (broken_) return;
     broken_ = true;
+    if (plan_.quiet) return;
     // A progress line on the terminal is rewritten in place: start on a clean line.
     std::cerr << (isatty(STDERR_FILENO) != 0 ? "\r\x1b[K" : "") << "rt: warning: "
               << located(plan_.path, "cannot write the checkpoint (" + why +
