@@ -1,10 +1,16 @@
 // docs/examples/animation works as its Makefile says: make -j renders every frame through rt
 // and its -M rules, a second make has nothing to do, and a changed texture re-renders every
-// frame. Skipped where make is not installed.
+// frame; a make -j interrupted by Ctrl-C resumes its frames from their checkpoints to the
+// same bytes. Skipped where make is not installed.
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <thread>
 
 #include "check.h"
 #include "cli_util.h"
@@ -91,4 +97,55 @@ TEST(changed_rtflags_render_the_frames_again) {
     CHECK_EQ(make(dir, "-j2 N=4", "--size 32x24 -q"), 0);
     CHECK_CONTAINS(read_file(dir / "frames" / "frame-002.ppm"), "\n32 24\n");
     CHECK(!out_of_date(dir, "--size 32x24 -q"));
+}
+
+// Ctrl-C in the middle of make -j: the frames being rendered keep their checkpoints, and the
+// next make resumes them (rt says so) to exactly the frames of an uninterrupted make.
+TEST(an_interrupted_make_resumes_its_frames_to_the_same_bytes) {
+    if (!on_path("make")) {
+        std::cout << "make is not installed: not checked\n";
+        return;
+    }
+    const std::string flags = "--size 160x120 -s 2";
+    const fs::path whole = work_dir("animation_whole");
+    const fs::path dir = work_dir("animation_resume");
+    for (const fs::path& d : {whole, dir})
+        fs::copy(fs::path(RT_SOURCE_DIR) / "docs" / "examples" / "animation", d,
+                 fs::copy_options::recursive);
+    CHECK_EQ(make(whole, "-j2 N=2", flags), 0);
+    // make in a process group of its own, as a shell runs a job, its frames written slowly.
+    const std::string command =
+        join("cd '", dir.string(), "' && RT_DEBUG=checkpoint-slow exec make -j2 N=2 RT='",
+             RT_BINARY, "' RTPP='", RTPP_BINARY, "' RTFLAGS='", flags, "' >>make.log 2>&1");
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        ::setpgid(0, 0);
+        ::execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    ::setpgid(pid, pid);
+    const fs::path checkpoint = dir / "frames" / "frame-001.ck";
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    std::error_code ec;
+    while ((!fs::exists(checkpoint, ec) || fs::file_size(checkpoint, ec) < 40 * 3900) &&
+           std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    ::kill(-pid, SIGINT);  // what Ctrl-C sends: the whole job
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    CHECK(!fs::exists(dir / "frames" / "frame-001.ppm"));
+    CHECK(fs::exists(checkpoint));
+    fs::copy_file(checkpoint, dir / "stale.ck");
+    CHECK_EQ(make(dir, "-j2 N=2", flags), 0);
+    CHECK_CONTAINS(read_file(dir / "make.log"), "rt: resuming from 'frames/frame-001.ck'");
+    for (const char* frame : {"frames/frame-000.ppm", "frames/frame-001.ppm"})
+        CHECK(read_file(dir / frame) == read_file(whole / frame));
+    CHECK(!fs::exists(checkpoint));
+    // Other RTFLAGS make the frames out of date, and a checkpoint left from before them
+    // (older than .rtflags) is removed by the rule rather than refused by rt.
+    fs::copy_file(dir / "stale.ck", checkpoint);
+    fs::last_write_time(checkpoint, fs::file_time_type::clock::now() - std::chrono::minutes(1));
+    CHECK_EQ(make(dir, "-j2 N=2", "--size 160x120"), 0);
+    CHECK(read_file(dir / "make.log").find("made by another render") == std::string::npos);
+    CHECK(!fs::exists(checkpoint));
 }

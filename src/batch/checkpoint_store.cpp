@@ -51,6 +51,10 @@ std::string located(const std::string& path, const std::string& message) {
     return show_token(path, kShowWhole) + ": " + message;
 }
 
+// One message, written at once: renders that share a terminal (make -j) must not interleave
+// their words.
+void say(const std::string& line) { std::cerr << line + "\n" << std::flush; }
+
 }  // namespace
 
 CheckpointStore::CheckpointStore(CheckpointPlan plan, RenderProgress* progress)
@@ -90,8 +94,8 @@ CheckpointStore::CheckpointStore(CheckpointPlan plan, RenderProgress* progress)
                             "remove it to render from the start"));
     }
     if (!exists && plan_.resume && !plan_.quiet)
-        std::cerr << "rt: note: no checkpoint " << quote_token(path, kShowWhole)
-                  << " to resume from: rendering from the start\n";
+        say("rt: note: no checkpoint " + quote_token(path, kShowWhole) +
+            " to resume from: rendering from the start");
     if (!exists || !resume_from_file()) create();
     interrupt::set_checkpoint(fd_);
 }
@@ -145,8 +149,8 @@ bool CheckpointStore::resume_from_file() {
         contents = read_checkpoint(bytes);
     } catch (const CheckpointHeaderDamaged& e) {
         if (!plan_.quiet)
-            std::cerr << "rt: warning: " << located(path, e.what())
-                      << ", so nothing in it can be used: rendering from the start\n";
+            say("rt: warning: " + located(path, e.what()) +
+                ", so nothing in it can be used: rendering from the start");
         ::close(fd_);
         fd_ = -1;
         return false;
@@ -175,19 +179,21 @@ bool CheckpointStore::resume_from_file() {
                                                   "checkpoint: ") +
                                           std::strerror(errno)));
         if (!plan_.quiet)
-            std::cerr << "rt: note: " << located(path, "cut off a damaged or incomplete tail of ")
-                      << (std::max<std::uint64_t>(static_cast<std::uint64_t>(st.st_size),
-                                                  bytes.size()) -
-                          contents.kept_bytes)
-                      << " bytes after the last complete row\n";
+            say("rt: note: " +
+                located(path, "cut off a damaged or incomplete tail of " +
+                                  std::to_string(
+                                      std::max<std::uint64_t>(
+                                          static_cast<std::uint64_t>(st.st_size), bytes.size()) -
+                                      contents.kept_bytes) +
+                                  " bytes after the last complete row"));
     }
     if (::fcntl(fd_, F_SETFL, O_APPEND) != 0 || ::lseek(fd_, 0, SEEK_END) < 0)
         throw Error(
             located(path, std::string("cannot append to the checkpoint: ") + std::strerror(errno)));
     if (!plan_.quiet)
-        std::cerr << "rt: resuming from " << quote_token(path, kShowWhole) << ": " << held_.size()
-                  << " of " << row_count(plan_.rows) + row_count(plan_.one_ray_rows)
-                  << " rows done\n";
+        say("rt: resuming from " + quote_token(path, kShowWhole) + ": " +
+            std::to_string(held_.size()) + " of " +
+            std::to_string(row_count(plan_.rows) + row_count(plan_.one_ray_rows)) + " rows done");
     return true;
 }
 
@@ -263,10 +269,9 @@ void CheckpointStore::warn_once(const std::string& why) {
     broken_ = true;
     if (plan_.quiet) return;
     // A progress line on the terminal is rewritten in place: start on a clean line.
-    std::cerr << (isatty(STDERR_FILENO) != 0 ? "\r\x1b[K" : "") << "rt: warning: "
-              << located(plan_.path, "cannot write the checkpoint (" + why +
-                                         "): the render goes on without checkpoints")
-              << "\n";
+    say(std::string(isatty(STDERR_FILENO) != 0 ? "\r\x1b[K" : "") + "rt: warning: " +
+        located(plan_.path, "cannot write the checkpoint (" + why +
+                                "): the render goes on without checkpoints"));
 }
 
 void CheckpointStore::remove() {
@@ -274,10 +279,8 @@ void CheckpointStore::remove() {
     if (fd_ >= 0) ::close(fd_);
     fd_ = -1;
     if (::unlink(plan_.path.c_str()) != 0 && errno != ENOENT)
-        std::cerr << "rt: warning: "
-                  << located(plan_.path,
-                             std::string("cannot remove the checkpoint: ") + std::strerror(errno))
-                  << "\n";
+        say("rt: warning: " + located(plan_.path, std::string("cannot remove the checkpoint: ") +
+                                                      std::strerror(errno)));
 }
 
 }  // namespace rt
