@@ -1,6 +1,7 @@
 // docs/examples/farm works as its README says: the strips of a sphere-light scene, rendered
 // by local.sh (xargs -P) and merged by rtimg, are the whole render byte for byte; where
-// Slurm is installed and a cluster answers, submit.sh's job array does the same.
+// Slurm is installed and a cluster answers, submit.sh's job array does the same, also when
+// one of its tasks is requeued while it renders (and resumes from its checkpoint).
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -18,7 +19,29 @@ namespace {
 const fs::path kFarm = fs::path(RT_SOURCE_DIR) / "docs" / "examples" / "farm";
 const std::string kScene = std::string(RT_SOURCE_DIR) + "/scenes/sphere-light.in";
 const std::string kEnvironment =
-    join("RT='", RT_BINARY, "' RTIMG='", RTIMG_BINARY, "' RTFLAGS='--size 96x64 -a 0.02' ");
+    join("RT='", RT_BINARY, "' RTIMG='", RTIMG_BINARY, "' RTFLAGS='--size 96x64 -a 0.02 -q' ");
+
+bool cluster_answers() {
+    if (shell("command -v sbatch >/dev/null 2>&1 && sinfo -h >/dev/null 2>&1") == 0) return true;
+    std::cout << "SKIPPED: no Slurm cluster answers here (sbatch, sinfo): the job array is not "
+                 "checked (docs/examples/farm/start-cluster.sh starts one)\n";
+    return false;
+}
+
+// What `command` prints on standard output.
+std::string output_of(const fs::path& dir, const std::string& command) {
+    const fs::path out = dir / "command.out";
+    shell(join(command, " >'", out.string(), "' 2>/dev/null"));
+    return read_file(out);
+}
+
+// Waits (up to 5 minutes) for a job to leave the queue.
+void wait_for_job(const std::string& id) {
+    for (int i = 0; i < 300; ++i) {
+        if (shell(join("squeue -h -j ", id, " 2>/dev/null | grep -q .")) != 0) return;
+        std::this_thread::sleep_for(std::chrono::seconds(1));
+    }
+}
 
 // The whole render with the strips' options, to compare with.
 std::string whole_render(const fs::path& dir) {
@@ -77,11 +100,7 @@ TEST(a_bad_scene_fails_once_with_rts_message) {
 }
 
 TEST(slurm_strips_merge_into_the_whole_render_where_a_cluster_runs) {
-    if (shell("command -v sbatch >/dev/null 2>&1 && sinfo -h >/dev/null 2>&1") != 0) {
-        std::cout << "SKIPPED: no Slurm cluster answers here (sbatch, sinfo): the job array "
-                     "is not checked\n";
-        return;
-    }
+    if (!cluster_answers()) return;
     const fs::path dir = work_dir("farm-slurm");
     const fs::path id_file = dir / "merge-job.txt";
     CHECK_EQ(
@@ -89,11 +108,49 @@ TEST(slurm_strips_merge_into_the_whole_render_where_a_cluster_runs) {
                    "' '", kScene, "' 4 '", (dir / "strips").string(), "' '",
                    (dir / "merged.png").string(), "' >'", id_file.string(), "'")),
         0);
-    // Wait (up to 5 minutes) for the merge job to leave the queue.
-    const std::string id = read_file(id_file).substr(0, read_file(id_file).find('\n'));
-    for (int i = 0; i < 300; ++i) {
-        if (shell(join("squeue -h -j ", id, " 2>/dev/null | grep -q .")) != 0) break;
-        std::this_thread::sleep_for(std::chrono::seconds(1));
-    }
+    wait_for_job(read_file(id_file).substr(0, read_file(id_file).find('\n')));
     CHECK(read_file(dir / "merged.png") == whole_render(dir));
+}
+
+// A strip requeued while it renders (as a preemption does: SIGTERM, then the task back in the
+// queue) flushes its checkpoint, runs again, resumes, and the merge is still the whole
+// render, byte for byte.
+TEST(a_requeued_strip_resumes_and_the_merge_is_the_whole_render) {
+    if (!cluster_answers()) return;
+    const fs::path dir = work_dir("farm-requeue");
+    const std::string flags = "--size 128x128 -s 6";
+    const std::string merge = output_of(
+        dir, join("cd '", dir.string(), "' && RT='", RT_BINARY, "' RTIMG='", RTIMG_BINARY,
+                  "' RTFLAGS='", flags, "' '", (kFarm / "submit.sh").string(), "' '", kScene,
+                  "' 2 '", (dir / "strips").string(), "' '", (dir / "merged.png").string(), "'"));
+    const std::string merge_id = merge.substr(0, merge.find('\n'));
+    // The array's id, from the merge's dependency ("afterok:12_*(unfulfilled)").
+    const std::string shown = output_of(dir, "scontrol show job " + merge_id);
+    const std::size_t after = shown.find("afterok:");
+    CHECK(after != std::string::npos);
+    const std::string array = shown.substr(after + 8, shown.find('_', after) - after - 8);
+    const std::string task = array + "_0";
+    // Task 0 has finished a few rows (its header and five rows of 3,098 bytes): requeue it.
+    const fs::path checkpoint = dir / "strips" / "strip-0-of-2.ck";
+    const auto rows_kept = [&] {
+        std::error_code ec;
+        const std::uintmax_t size = fs::file_size(checkpoint, ec);
+        return !ec && size >= 700 + 5 * 3098;
+    };
+    for (int i = 0; i < 3000 && !rows_kept(); ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    CHECK_EQ(shell("scontrol requeue " + task), 0);
+    // Slurm holds a requeued task back for two minutes: let it start again at once.
+    for (int i = 0; i < 100; ++i) {
+        if (output_of(dir, "squeue -h -j " + task + " -o %t").find("R") == 0) break;
+        shell("scontrol update jobid=" + task + " StartTime=now >/dev/null 2>&1");
+        std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    }
+    wait_for_job(merge_id);
+    const std::string log = read_file(dir / "strips" / ("slurm-" + task + ".out"));
+    CHECK_CONTAINS(log, "rt: interrupted");
+    CHECK_CONTAINS(log, "rt: resuming from '" + checkpoint.string() + "'");
+    CHECK(!fs::exists(checkpoint));
+    CHECK(run_rt(dir, join("-q ", flags, " -o whole.png '", kScene, "'")).status == 0);
+    CHECK(read_file(dir / "merged.png") == read_file(dir / "whole.png"));
 }
