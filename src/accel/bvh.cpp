@@ -80,7 +80,9 @@ struct Box {
 };
 
 // One primitive as the build sees it: its box, the box's centre, and in the centre's fourth
-// place the primitive's index (its bits), which the centres' boxes carry along unread.
+// place the primitive's index (its bits), which the centres' boxes carry along unread. The
+// box's fourth lanes hold, once it is binned, the reference's bin in its range's plan (lo),
+// which the partition then reads instead of finding it again.
 struct Reference {
     Box box;
     float centre[4];
@@ -91,6 +93,8 @@ struct Reference {
         return v;
     }
     std::uint32_t index() const { return std::bit_cast<std::uint32_t>(centre[3]); }
+    float bin() const { return box.lo[3]; }
+    void set_bin(std::size_t b) { box.lo[3] = static_cast<float>(b); }
 };
 static_assert(sizeof(Reference) == 48);
 
@@ -201,7 +205,7 @@ class Builder {
 
     // The plan of a range at a depth: none (count 0) where build() splits it otherwise.
     static BinPlan plan_for(const Range& range, int depth);
-    void bin(const Range& range, Binned& binned) const;
+    void bin(const Range& range, Binned& binned);
     static SahSplit best_split(const Range& range, const Binned& binned);
     // Moves the references of the bins up to split.last_first to the front of the range,
     // putting each in its child's bins on the way; the children's boxes come from the bins.
@@ -256,11 +260,14 @@ BinPlan Builder::plan_for(const Range& range, int depth) {
     return plan;
 }
 
-void Builder::bin(const Range& range, Binned& binned) const {
-    const Reference* const refs = refs_.data();
+void Builder::bin(const Range& range, Binned& binned) {
+    Reference* const refs = refs_.data();
     const BinPlan plan = binned.plan;  // a copy: the bins' stores cannot change it
-    for (std::uint32_t i = range.begin; i < range.end; ++i)
-        binned.bins[plan.bin_of(refs[i])].add(refs[i]);
+    for (std::uint32_t i = range.begin; i < range.end; ++i) {
+        const std::size_t b = plan.bin_of(refs[i]);
+        refs[i].set_bin(b);
+        binned.bins[b].add(refs[i]);
+    }
 }
 
 Builder::SahSplit Builder::best_split(const Range& range, const Binned& binned) {
@@ -316,22 +323,27 @@ void Builder::partition(const Range& range, const Binned& binned, const SahSplit
     // bins when its side is settled. On local copies of the plans: the stores cannot then be
     // taken to change them.
     Reference* const refs = refs_.data();
-    const BinPlan plan = binned.plan;
     const BinPlan first_plan = children.first_bins.plan;
     const BinPlan second_plan = children.second_bins.plan;
-    const std::size_t last_first = split.last_first;
-    const auto goes_first = [&](const Reference& r) { return plan.bin_of(r) <= last_first; };
+    // Every reference of the range holds its bin (set when it was binned); bins are small
+    // whole numbers, exact in float.
+    const auto last_first = static_cast<float>(split.last_first);
+    const auto goes_first = [last_first](const Reference& r) { return r.bin() <= last_first; };
+    const auto put = [](const BinPlan& plan, Bin* bins, Reference& r) {
+        if (plan.count == 0) return;
+        const std::size_t b = plan.bin_of(r);
+        r.set_bin(b);
+        bins[b].add(r);
+    };
     Bin* const first_bins = children.first_bins.bins;
     Bin* const second_bins = children.second_bins.bins;
     std::uint32_t front = range.begin, back = range.end;
     for (;;) {
         while (front < back && goes_first(refs[front])) {
-            if (first_plan.count > 0) first_bins[first_plan.bin_of(refs[front])].add(refs[front]);
-            ++front;
+            put(first_plan, first_bins, refs[front++]);
         }
         while (front < back && !goes_first(refs[back - 1])) {
-            --back;
-            if (second_plan.count > 0) second_bins[second_plan.bin_of(refs[back])].add(refs[back]);
+            put(second_plan, second_bins, refs[--back]);
         }
         if (front == back) break;
         std::swap(refs[front], refs[back - 1]);
