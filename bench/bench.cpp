@@ -41,6 +41,7 @@ double peak_megabytes() { return static_cast<double>(rt::peak_memory_bytes()) / 
 
 struct Figures {
     std::size_t objects = 0;
+    double megabytes = 0;  // the scene file's size
     int xres = 0, yres = 0;
     double read_s = 0, build_s = 0, render_s = 0;
     rt::RenderStats rays;
@@ -69,15 +70,16 @@ Figures measure(const std::string& file, rt::RenderOptions options, int repeat) 
     }
     f.render_s = median(times);
     f.objects = scene.objects.size();
+    f.megabytes = static_cast<double>(std::filesystem::file_size(file)) / 1e6;
     f.xres = scene.viewer.xres;
     f.yres = scene.viewer.yres;
     return f;
 }
 
 void print_header() {
-    std::printf("%-16s %9s %11s %8s %8s %9s %8s %10s %12s %9s %8s %9s\n", "scene", "objects",
-                "size", "read_s", "build_s", "render_s", "Mrays/s", "primary_M", "secondary_M",
-                "shadow_M", "peak_MB", "tests/ray");
+    std::printf("%-16s %9s %11s %8s %8s %9s %8s %10s %12s %9s %8s %9s %10s %11s\n", "scene",
+                "objects", "size", "read_s", "build_s", "render_s", "Mrays/s", "primary_M",
+                "secondary_M", "shadow_M", "peak_MB", "tests/ray", "read_MB/s", "build_Mo/s");
 }
 
 void print_row(const std::string& name, const Figures& f) {
@@ -86,11 +88,13 @@ void print_row(const std::string& name, const Figures& f) {
     const double tests_per_ray = f.rays.total() > 0 ? static_cast<double>(f.rays.object_tests) /
                                                           static_cast<double>(f.rays.total())
                                                     : 0;
-    std::printf("%-16s %9zu %11s %8.3f %8.3f %9.3f %8.2f %10.3f %12.3f %9.3f %8.1f %9.2f\n",
-                name.c_str(), f.objects, size.c_str(), f.read_s, f.build_s, f.render_s,
-                millions(f.rays.total()) / f.render_s, millions(f.rays.primary_rays),
-                millions(f.rays.secondary_rays()), millions(f.rays.shadow_rays), peak_megabytes(),
-                tests_per_ray);
+    std::printf(
+        "%-16s %9zu %11s %8.3f %8.3f %9.3f %8.2f %10.3f %12.3f %9.3f %8.1f %9.2f %10.1f %11.2f\n",
+        name.c_str(), f.objects, size.c_str(), f.read_s, f.build_s, f.render_s,
+        millions(f.rays.total()) / f.render_s, millions(f.rays.primary_rays),
+        millions(f.rays.secondary_rays()), millions(f.rays.shadow_rays), peak_megabytes(),
+        tests_per_ray, f.megabytes / f.read_s,
+        f.build_s > 0 ? static_cast<double>(f.objects) / f.build_s / 1e6 : 0.0);
     std::fflush(stdout);
 }
 

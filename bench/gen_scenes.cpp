@@ -231,6 +231,151 @@ Scene mirror(long count, int size) {
     return scene;
 }
 
+// A sphereflake in the SPD's spirit: a sphere with nine spheres a third its size round it (six
+// round its equator, three above), each of them with nine more, `levels` deep (COUNT is the
+// level count: 9^0 + ... + 9^levels spheres). Mirror-like, over a floor.
+void flake(SphereGroup& group, Vec centre, double radius, Vec up, int level) {
+    group.spheres.push_back({centre, radius});
+    if (level == 0) return;
+    // A frame round `up`: child directions are fixed angles in it.
+    const Vec side =
+        normalized(std::fabs(up.x) < 0.9 ? cross(up, {1, 0, 0}) : cross(up, {0, 1, 0}));
+    const Vec other = cross(up, side);
+    const double child = radius / 3;
+    for (int i = 0; i < 9; ++i) {
+        const bool ring = i < 6;
+        const double around = 2 * std::numbers::pi * (ring ? i / 6.0 : (i - 6) / 3.0 + 1 / 12.0);
+        const double elevation = ring ? 0 : std::numbers::pi / 3.5;
+        const Vec direction =
+            std::cos(elevation) * (std::cos(around) * side + std::sin(around) * other) +
+            std::sin(elevation) * up;
+        flake(group, centre + (radius + child) * direction, child, direction, level - 1);
+    }
+}
+
+Scene sphereflake(long levels, int size) {
+    Scene scene = lit_scene(4, camera({2.1, 2.6, -3.9}, {0, 0.55, 0}, 45, size),
+                            {{0.55, 0.5, 0.45}, 0.15, 10, 0.8});
+    SphereGroup group{{{0.75, 0.7, 0.65}, 0.5, 60, 0.5}, {}};
+    flake(group, {0, 0.6, 0}, 0.5, {0, 1, 0}, static_cast<int>(std::min(levels, 7L)));
+    scene.groups.push_back(std::move(group));
+    return scene;
+}
+
+// Nested shells of spheres, the SPD's "shells" idea: COUNT spheres on a spiral, each smaller
+// than the one before and overlapping it heavily, so that most rays meet many spheres'
+// boxes. The spiral's size is fixed: more spheres overlap more.
+Scene shells(long count, int size) {
+    Scene scene =
+        lit_scene(3, camera({0, 3.2, -5.5}, {0, 1, 0}, 45, size), {{0.5, 0.55, 0.6}, 0.1, 10, 0.8});
+    Random random(4);
+    constexpr long kFinishes = 8;
+    for (long g = 0; g < kFinishes; ++g) scene.groups.push_back({random_finish(random), {}});
+    for (long i = 0; i < count; ++i) {
+        const double f = static_cast<double>(i) / static_cast<double>(count);
+        const double angle = 6 * 2 * std::numbers::pi * f;  // six turns
+        const double radius = 0.9 * (1 - 0.93 * f);
+        const double reach = 1.6 * (1 - f);
+        scene.groups[static_cast<std::size_t>(i % kFinishes)].spheres.push_back(
+            {{reach * std::cos(angle), 1 + 0.4 * std::sin(3 * angle) * (1 - f),
+              reach * std::sin(angle)},
+             radius});
+    }
+    return scene;
+}
+
+// A recursive tetrahedron (Sierpinski's), `levels` deep (COUNT is the level count), as one
+// mesh: 4^levels small tetrahedra of four triangles each.
+void tetrahedra(Mesh& m, const std::array<Vec, 4>& corners, int level) {
+    if (level == 0) {
+        const std::size_t base = m.vertices.size();
+        for (const Vec& c : corners) m.vertices.push_back(c);
+        m.triangles.push_back({base, base + 1, base + 2});
+        m.triangles.push_back({base, base + 3, base + 1});
+        m.triangles.push_back({base + 1, base + 3, base + 2});
+        m.triangles.push_back({base, base + 2, base + 3});
+        return;
+    }
+    for (int k = 0; k < 4; ++k) {
+        std::array<Vec, 4> half;
+        for (int j = 0; j < 4; ++j)
+            half[static_cast<std::size_t>(j)] =
+                0.5 * (corners[static_cast<std::size_t>(k)] + corners[static_cast<std::size_t>(j)]);
+        tetrahedra(m, half, level - 1);
+    }
+}
+
+Scene tetra(long levels, int size) {
+    Scene scene = lit_scene(3, camera({1.6, 2.4, -3.4}, {0, 0.75, 0}, 45, size),
+                            {{0.5, 0.55, 0.6}, 0.15, 10, 0.8});
+    Mesh m;
+    m.finish = {{0.8, 0.75, 0.55}, 0.2, 30, 0.75};
+    const double h = 1.6;
+    tetrahedra(m,
+               {Vec{0, h, 0}, Vec{-0.92, 0.01, -0.53}, Vec{0.92, 0.01, -0.53}, Vec{0, 0.01, 1.06}},
+               static_cast<int>(std::min(levels, 9L)));
+    scene.meshes.push_back(std::move(m));
+    return scene;
+}
+
+// A fractal mountain (midpoint displacement on a square grid of 2^levels + 1 points a side,
+// COUNT the level count) as one mesh, with reflective spheres resting round it, in the
+// spirit of the SPD's "mount" (whose spheres are glass: rt's glass has no exact POV-Ray
+// twin here, so these mirror).
+Scene mountain(long levels, int size) {
+    Scene scene = lit_scene(3, camera({0, 4.5, -9}, {0, 1.2, 0}, 50, size),
+                            {{0.45, 0.5, 0.55}, 0.1, 10, 0.8});
+    const int n = 1 << static_cast<int>(std::min(levels, 11L));
+    const std::size_t side = static_cast<std::size_t>(n) + 1;
+    std::vector<double> height(side * side, 0);
+    Random random(5);
+    const auto at = [&](std::size_t i, std::size_t j) -> double& { return height[i * side + j]; };
+    double spread = 1.6;
+    for (std::size_t step = static_cast<std::size_t>(n); step > 1; step /= 2, spread *= 0.55) {
+        const std::size_t half = step / 2;
+        for (std::size_t i = half; i < side; i += step)
+            for (std::size_t j = half; j < side; j += step)
+                at(i, j) = 0.25 * (at(i - half, j - half) + at(i - half, j + half) +
+                                   at(i + half, j - half) + at(i + half, j + half)) +
+                           random.uniform(-spread, spread);
+        for (std::size_t i = 0; i < side; i += half)
+            for (std::size_t j = (i / half) % 2 == 0 ? half : 0; j < side; j += step) {
+                double sum = 0;
+                int terms = 0;
+                if (i >= half) sum += at(i - half, j), ++terms;
+                if (i + half < side) sum += at(i + half, j), ++terms;
+                if (j >= half) sum += at(i, j - half), ++terms;
+                if (j + half < side) sum += at(i, j + half), ++terms;
+                at(i, j) = sum / terms + random.uniform(-spread, spread);
+            }
+    }
+    Mesh m;
+    m.finish = {{0.55, 0.5, 0.4}, 0.05, 10, 0.9};
+    const double extent = 6;
+    for (std::size_t i = 0; i < side; ++i)
+        for (std::size_t j = 0; j < side; ++j) {
+            const double x = extent * (static_cast<double>(i) / n - 0.5);
+            const double z = extent * (static_cast<double>(j) / n - 0.5);
+            // A dome under the noise, so the mountain rises from the floor.
+            const double dome = 2.2 * std::max(0.0, 1 - (x * x + z * z) / 9);
+            m.vertices.push_back({x, std::max(0.02, dome + 0.5 * at(i, j)), z});
+        }
+    for (std::size_t i = 0; i + 1 < side; ++i)
+        for (std::size_t j = 0; j + 1 < side; ++j) {
+            const std::size_t a = i * side + j, b = a + 1, c = a + side + 1, d = a + side;
+            m.triangles.push_back({a, b, c});
+            m.triangles.push_back({a, c, d});
+        }
+    scene.meshes.push_back(std::move(m));
+    SphereGroup balls{{{0.9, 0.95, 1}, 0.7, 120, 0.2}, {}};
+    for (int k = 0; k < 4; ++k) {
+        const double angle = std::numbers::pi * (0.2 + 0.4 * k);
+        balls.spheres.push_back({{3.6 * std::cos(angle), 0.5, -3.6 * std::sin(angle) + 0.5}, 0.5});
+    }
+    scene.groups.push_back(std::move(balls));
+    return scene;
+}
+
 // Vectors as rt writes them, "x y z", and as POV-Ray does, "<x, y, z>".
 std::ostream& operator<<(std::ostream& out, Vec a) {
     return out << a.x << ' ' << a.y << ' ' << a.z;
@@ -332,10 +477,14 @@ Scene make_scene(const std::string& name, int size) {
     const std::string kind = name.substr(0, dash);
     if (dash == std::string::npos) throw std::invalid_argument("no count");
     const long count = parse_count(name.substr(dash + 1));
-    Scene scene = kind == "spheres"  ? spheres(count, size)
-                  : kind == "mesh"   ? mesh(count, size)
-                  : kind == "mirror" ? mirror(count, size)
-                                     : throw std::invalid_argument("unknown kind");
+    Scene scene = kind == "spheres"       ? spheres(count, size)
+                  : kind == "mesh"        ? mesh(count, size)
+                  : kind == "mirror"      ? mirror(count, size)
+                  : kind == "sphereflake" ? sphereflake(count, size)
+                  : kind == "shells"      ? shells(count, size)
+                  : kind == "tetra"       ? tetra(count, size)
+                  : kind == "mountain"    ? mountain(count, size)
+                                          : throw std::invalid_argument("unknown kind");
     scene.name = name;
     return scene;
 }
@@ -351,7 +500,8 @@ void write_file(const std::filesystem::path& path, const Scene& scene,
 
 int usage() {
     std::cerr << "usage: rt_bench_scenes [--size N] DIR [SCENE ...]\n"
-                 "  SCENE: spheres-COUNT, mesh-COUNT or mirror-COUNT; COUNT may end in k or m\n";
+                 "  SCENE: spheres-COUNT, mesh-COUNT, mirror-COUNT, shells-COUNT, or\n"
+                 "  sphereflake-LEVELS, tetra-LEVELS, mountain-LEVELS; COUNT may end in k or m\n";
     return 2;
 }
 

@@ -121,14 +121,21 @@ TEST(structure_with_extreme_sizes) {
 }
 
 TEST(the_same_tree_on_any_number_of_threads) {
+    // Enough boxes that the build hands subtrees to helper threads two levels down (a helper
+    // takes a child of at least 50,000), with some coincident centres and some flat boxes.
     Random random(5);
-    const std::vector<Bounds> boxes = random_boxes(random, 150000, 50, 0.5);
+    std::vector<Bounds> boxes = random_boxes(random, 220000, 50, 0.5);
+    for (std::size_t i = 0; i < boxes.size(); i += 97) boxes[i] = boxes[i / 2];
+    for (std::size_t i = 0; i < boxes.size(); i += 89) boxes[i].max.y = boxes[i].min.y;
     const Bvh one(boxes, 1);
-    for (const int threads : {2, 3, 4}) {
+    for (const int threads : {2, 3, 8}) {
         const Bvh many(boxes, threads);
         CHECK_EQ(many.nodes().size(), one.nodes().size());
         CHECK(std::memcmp(many.nodes().data(), one.nodes().data(),
                           one.nodes().size() * sizeof(BvhNode)) == 0);
+        CHECK_EQ(many.wide_nodes().size(), one.wide_nodes().size());
+        CHECK(std::memcmp(many.wide_nodes().data(), one.wide_nodes().data(),
+                          one.wide_nodes().size() * sizeof(WideNode)) == 0);
         CHECK(std::equal(many.order().begin(), many.order().end(), one.order().begin(),
                          one.order().end()));
     }

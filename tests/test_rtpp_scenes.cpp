@@ -13,11 +13,11 @@
 
 #include "check.h"
 #include "cli_util.h"
-#include "scene/lexer.h"
 #include "rt/image_io.h"
 #include "rt/reader.h"
 #include "rt/render.h"
 #include "rtpp/compiler.h"
+#include "scene/lexer.h"
 
 namespace fs = std::filesystem;
 
@@ -40,14 +40,15 @@ std::vector<Word> words(const std::string& text, const std::string& name) {
         if (token.at_end()) return result;
         Word word;
         word.place = lexer.place(token.where);
+        const std::string spelled(token.text);  // strtod needs the terminating NUL
         char* end = nullptr;
-        const double value = std::strtod(token.text.c_str(), &end);
-        if (!token.quoted && end != token.text.c_str() && *end == '\0') {
+        const double value = std::strtod(spelled.c_str(), &end);
+        if (!token.quoted && end != spelled.c_str() && *end == '\0') {
             char exact[40];
             std::snprintf(exact, sizeof exact, "%.17g", value);
             word.text = exact;
         } else {
-            const fs::path p(token.text);
+            const fs::path p(spelled);
             word.text = (p.is_absolute() ? p : kScenes / p).lexically_normal().string();
         }
         result.push_back(std::move(word));

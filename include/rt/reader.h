@@ -62,6 +62,14 @@ class SceneReader {
 
     // Field readers; `what` names the field in messages ("sphere radius").
     double number(std::string_view what);
+    // Reads the next token when it is a plain decimal number (digits, a point and fraction, an
+    // exponent: what scenes are made of, see reader.cpp) and returns true with the value
+    // number() gives for it; otherwise reads nothing and returns false, and number() reads the
+    // token or reports it. For readers of many numbers whose field names cost something to
+    // make: they make the name only when this returns false.
+    bool plain_number(double& value);
+    // Where the number last read began.
+    Location last_number_location() const { return last_number_; }
     double positive(std::string_view what);      // > 0
     double non_negative(std::string_view what);  // >= 0
     Vec3 vec3(std::string_view what);
@@ -153,9 +161,11 @@ class SceneReader {
     SurfacePtr default_surface_;
     std::optional<Location> background_where_;  // where the scene's 115 is, once read
     int depth_ = 0;
-    long numbers_read_ = 0;         // every number token so far, IDs included
-    Location last_number_;          // where the last of them began
-    std::string last_number_text_;  // and how it was written
+    long numbers_read_ = 0;          // every number token so far, IDs included
+    Location last_number_;           // where the last of them began
+    std::string last_number_text_;   // and how it was written, or, when that was a plain
+    char last_plain_text_[32] = {};  // decimal (plain_number), there: last_plain_size_ bytes
+    unsigned char last_plain_size_ = 0;
     long light_samples_ = 0;        // taken by the lights so far
     ObjectStart last_object_;       // the object (at any depth) whose ID was read last
     ObjectStart top_level_object_;  // the top-level object that holds it

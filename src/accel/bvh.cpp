@@ -10,10 +10,14 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cfloat>
 #include <cmath>
+#include <cstring>
 #include <exception>
+#include <new>
 #include <thread>
+#include <type_traits>
 
 namespace rt {
 
@@ -44,22 +48,27 @@ float float_above(double v) {
     return x > FLT_MAX ? HUGE_VALF : static_cast<float>(x);
 }
 
+// Four floats as one value (the GCC/clang vector extension: SSE on x86-64, NEON on arm64):
+// x, y, z and a fourth lane that boxes carry along and never read.
+using Floats = float __attribute__((vector_size(16)));
+
+// Lane by lane std::min(a, b) and std::max(a, b), with their choices where either is NaN, so
+// that the boxes are those the scalar build made.
+Floats lane_min(Floats a, Floats b) { return b < a ? b : a; }
+Floats lane_max(Floats a, Floats b) { return a < b ? b : a; }
+
 // A box of floats; empty (lo > hi) until something is added.
 struct Box {
-    float lo[3] = {HUGE_VALF, HUGE_VALF, HUGE_VALF};
-    float hi[3] = {-HUGE_VALF, -HUGE_VALF, -HUGE_VALF};
+    Floats lo = {HUGE_VALF, HUGE_VALF, HUGE_VALF, HUGE_VALF};
+    Floats hi = {-HUGE_VALF, -HUGE_VALF, -HUGE_VALF, -HUGE_VALF};
 
     void add(const Box& b) {
-        for (int k = 0; k < 3; ++k) {
-            lo[k] = std::min(lo[k], b.lo[k]);
-            hi[k] = std::max(hi[k], b.hi[k]);
-        }
+        lo = lane_min(lo, b.lo);
+        hi = lane_max(hi, b.hi);
     }
-    void add_point(const float p[3]) {
-        for (int k = 0; k < 3; ++k) {
-            lo[k] = std::min(lo[k], p[k]);
-            hi[k] = std::max(hi[k], p[k]);
-        }
+    void add_point(Floats p) {
+        lo = lane_min(lo, p);
+        hi = lane_max(hi, p);
     }
     // In double: a float box's sides can overflow a float product.
     double half_area() const {
@@ -70,17 +79,29 @@ struct Box {
     }
 };
 
-// One primitive as the build sees it: its box, the box's centre and the primitive's index.
+// One primitive as the build sees it: its box, the box's centre, and in the centre's fourth
+// place the primitive's index (its bits), which the centres' boxes carry along unread. The
+// box's fourth lanes hold, once it is binned, the reference's bin in its range's plan (lo),
+// which the partition then reads instead of finding it again.
 struct Reference {
     Box box;
-    float centre[3];
-    std::uint32_t index;
+    float centre[4];
+
+    Floats centre_lanes() const {
+        Floats v;
+        std::memcpy(&v, centre, sizeof v);
+        return v;
+    }
+    std::uint32_t index() const { return std::bit_cast<std::uint32_t>(centre[3]); }
+    float bin() const { return box.lo[3]; }
+    void set_bin(std::size_t b) { box.lo[3] = static_cast<float>(b); }
 };
+static_assert(sizeof(Reference) == 48);
 
 Reference make_reference(const Bounds& b, std::uint32_t index) {
     const double pad =
         kBoxPadding * (1 + std::fmax(max_abs_component(b.min), max_abs_component(b.max)));
-    Reference r{{}, {}, index};
+    Reference r{};
     for (int k = 0; k < 3; ++k) {
         r.box.lo[k] = float_below(b.min[k] - pad);
         r.box.hi[k] = float_above(b.max[k] + pad);
@@ -89,6 +110,9 @@ Reference make_reference(const Bounds& b, std::uint32_t index) {
                                                     static_cast<double>(-FLT_MAX),
                                                     static_cast<double>(FLT_MAX)));
     }
+    r.box.lo[3] = 0;
+    r.box.hi[3] = 0;
+    r.centre[3] = std::bit_cast<float>(index);
     return r;
 }
 
@@ -100,6 +124,61 @@ struct Range {
     std::uint32_t count() const { return end - begin; }
 };
 
+// The centres' extent along each axis, in double, and the longest axis (the first of equals).
+struct Spread {
+    double extent[3];
+    int axis;
+
+    explicit Spread(const Box& c)
+        : extent{static_cast<double>(c.hi[0]) - c.lo[0], static_cast<double>(c.hi[1]) - c.lo[1],
+                 static_cast<double>(c.hi[2]) - c.lo[2]},
+          axis(extent[0] >= extent[1] && extent[0] >= extent[2] ? 0
+               : extent[1] >= extent[2]                         ? 1
+                                                                : 2) {}
+};
+
+// How a range's centres are put into bins along its longest axis for its SAH split. Bins are
+// found in float, the same way when binning and when partitioning.
+struct BinPlan {
+    int axis = 0;
+    std::size_t count = 0;  // bins in use; 0 when the range takes no SAH split
+    float origin = 0, scale = 0, last = 0;
+
+    std::size_t bin_of(const Reference& r) const {
+        const float b = (r.centre[axis] - origin) * scale;  // >= 0
+        // NaN (0 * inf for a very thin range) goes to the last bin. Through int: a float's
+        // conversion to an unsigned 64-bit type takes a branch.
+        return static_cast<std::size_t>(static_cast<int>(b < last ? b : last));
+    }
+};
+
+struct Bin {
+    std::uint32_t count = 0;
+    Box box, centres;
+
+    void add(const Reference& r) {
+        ++count;
+        box.add(r.box);
+        centres.add_point(r.centre_lanes());
+    }
+};
+
+// A range's references in the bins of its plan. Only the plan's bins are set (reset()): a
+// node makes two of these, and most nodes are small.
+struct Binned {
+    BinPlan plan;
+    union {
+        Bin bins[kBins];
+    };
+
+    Binned() {}
+    void reset(const BinPlan& p) {
+        plan = p;
+        for (std::size_t b = 0; b < plan.count; ++b) new (&bins[b]) Bin;
+    }
+};
+static_assert(std::is_trivially_destructible_v<Bin>);
+
 class Builder {
   public:
     Builder(std::vector<Reference>& refs, std::vector<BvhNode>& nodes)
@@ -108,34 +187,37 @@ class Builder {
     Range whole() const { return measured(0, static_cast<std::uint32_t>(refs_.size())); }
     // Writes the subtree over the range into nodes_, depth first, using up to `threads`
     // threads: a second thread builds a large node's second child into nodes of its own,
-    // appended afterwards, so the array is the same however many threads built it.
-    void build(const Range& range, int depth, int threads);
+    // appended afterwards, so the array is the same however many threads built it. `binned`,
+    // when given, is the range already in the bins of its plan (its parent's partition put
+    // them there), so that each level reads the references once, not twice.
+    void build(const Range& range, const Binned* binned, int depth, int threads);
 
   private:
-    struct Bin {
-        std::uint32_t count = 0;
-        Box box;
-    };
     struct SahSplit {
-        double cost = kInfinity;  // relative to testing one primitive
-        bool found = false;       // false when no boundary separates the primitives
-        std::pair<Range, Range> children;
+        double cost = kInfinity;     // relative to testing one primitive
+        bool found = false;          // false when no boundary separates the primitives
+        std::size_t last_first = 0;  // the last bin whose references go to the first child
+    };
+    struct Children {
+        Range first, second;
+        Binned first_bins, second_bins;  // plan.count 0 where a child takes no SAH split
     };
 
-    // The best of the splits between bins of centres along the axis, already partitioned.
-    SahSplit sah_split(const Range& range, int axis, double extent);
-
-    // Moves the references for which goes_first holds to the front of the range; returns
-    // the two parts with their centroid boxes (their boxes are left to the caller).
-    template <class Predicate>
-    std::pair<Range, Range> partition(const Range& range, Predicate goes_first);
+    // The plan of a range at a depth: none (count 0) where build() splits it otherwise.
+    static BinPlan plan_for(const Range& range, int depth);
+    void bin(const Range& range, Binned& binned);
+    static SahSplit best_split(const Range& range, const Binned& binned);
+    // Moves the references of the bins up to split.last_first to the front of the range,
+    // putting each in its child's bins on the way; the children's boxes come from the bins.
+    void partition(const Range& range, const Binned& binned, const SahSplit& split, int depth,
+                   Children& children);
 
     Range measured(std::uint32_t begin, std::uint32_t end) const;
     // Splits in the middle of the range, for primitives no position separates.
     std::pair<Range, Range> median_split(const Range& range, int axis);
     void make_leaf(std::size_t node, const Range& range);
-    void build_children(std::size_t node, const std::pair<Range, Range>& children, int depth,
-                        int threads);
+    void build_children(std::size_t node, const Range& first, const Binned* first_bins,
+                        const Range& second, const Binned* second_bins, int depth, int threads);
 
     std::vector<Reference>& refs_;
     std::vector<BvhNode>& nodes_;
@@ -145,7 +227,7 @@ Range Builder::measured(std::uint32_t begin, std::uint32_t end) const {
     Range r{begin, end, {}, {}};
     for (std::uint32_t i = begin; i < end; ++i) {
         r.box.add(refs_[i].box);
-        r.centres.add_point(refs_[i].centre);
+        r.centres.add_point(refs_[i].centre_lanes());
     }
     return r;
 }
@@ -158,48 +240,39 @@ std::pair<Range, Range> Builder::median_split(const Range& range, int axis) {
     return {measured(range.begin, mid), measured(mid, range.end)};
 }
 
-template <class Predicate>
-std::pair<Range, Range> Builder::partition(const Range& range, Predicate goes_first) {
-    Range first{range.begin, range.begin, {}, {}};
-    Range second{range.end, range.end, {}, {}};
-    // Hoare's scheme: grow the first part from the front and the second from the back,
-    // swapping only a pair that is on the wrong sides.
-    for (;;) {
-        while (first.end < second.begin && goes_first(refs_[first.end]))
-            first.centres.add_point(refs_[first.end++].centre);
-        while (first.end < second.begin && !goes_first(refs_[second.begin - 1]))
-            second.centres.add_point(refs_[--second.begin].centre);
-        if (first.end == second.begin) break;
-        std::swap(refs_[first.end], refs_[second.begin - 1]);
-    }
-    return {first, second};
-}
-
 void Builder::make_leaf(std::size_t node, const Range& range) {
     nodes_[node].offset = range.begin;
     nodes_[node].count = static_cast<std::uint16_t>(range.count());
 }
 
-Builder::SahSplit Builder::sah_split(const Range& range, int axis, double extent) {
+BinPlan Builder::plan_for(const Range& range, int depth) {
+    BinPlan plan;
+    if (range.count() < 2 || depth >= Bvh::kMaxSahDepth) return plan;
+    const Spread spread(range.centres);
+    const double extent = spread.extent[spread.axis];
+    if (!(extent > 0) || !std::isfinite(extent)) return plan;
     // Fewer bins for fewer primitives: the bins' fixed cost dominates small nodes.
-    const std::size_t bin_count = std::min<std::size_t>(kBins, range.count());
-    // Count the primitives and grow the box of each bin of centres along the axis. Bins are
-    // found in float, the same way here and in the partition below.
-    const float origin = range.centres.lo[axis];
-    const auto scale = static_cast<float>(static_cast<double>(bin_count) / extent);
-    const auto last = static_cast<float>(bin_count - 1);
-    auto bin_of = [&](const Reference& r) {
-        const float b = (r.centre[axis] - origin) * scale;  // >= 0
-        // NaN (0 * inf for a very thin range) goes to the last bin. Through int: a float's
-        // conversion to an unsigned 64-bit type takes a branch.
-        return static_cast<std::size_t>(static_cast<int>(b < last ? b : last));
-    };
-    std::array<Bin, kBins> bins;
+    plan.count = std::min<std::size_t>(kBins, range.count());
+    plan.axis = spread.axis;
+    plan.origin = range.centres.lo[spread.axis];
+    plan.scale = static_cast<float>(static_cast<double>(plan.count) / extent);
+    plan.last = static_cast<float>(plan.count - 1);
+    return plan;
+}
+
+void Builder::bin(const Range& range, Binned& binned) {
+    Reference* const refs = refs_.data();
+    const BinPlan plan = binned.plan;  // a copy: the bins' stores cannot change it
     for (std::uint32_t i = range.begin; i < range.end; ++i) {
-        Bin& bin = bins[bin_of(refs_[i])];
-        ++bin.count;
-        bin.box.add(refs_[i].box);
+        const std::size_t b = plan.bin_of(refs[i]);
+        refs[i].set_bin(b);
+        binned.bins[b].add(refs[i]);
     }
+}
+
+Builder::SahSplit Builder::best_split(const Range& range, const Binned& binned) {
+    const std::size_t bin_count = binned.plan.count;
+    const Bin* const bins = binned.bins;
     // Sweep from the right for the boxes above each boundary, then from the left: the cost of
     // splitting after bin s is that of visiting both children, weighted by the chance (their
     // area over the parent's) that a ray through the parent enters each.
@@ -210,7 +283,6 @@ Builder::SahSplit Builder::sah_split(const Range& range, int axis, double extent
         area_above[s] = above.half_area();
     }
     SahSplit best;
-    std::size_t best_bin = 0;
     Box below;
     std::uint32_t count_below = 0;
     for (std::size_t s = 0; s + 1 < bin_count; ++s) {
@@ -221,26 +293,70 @@ Builder::SahSplit Builder::sah_split(const Range& range, int axis, double extent
         const double cost = count_below * below.half_area() + count_above * area_above[s + 1];
         if (cost < best.cost) {
             best.cost = cost;
-            best_bin = s;
+            best.last_first = s;
         }
     }
     best.cost = kTraversalCost + best.cost / range.box.half_area();
     best.found = std::isfinite(best.cost);
-    if (!best.found) return best;
-    best.children = partition(range, [&](const Reference& r) { return bin_of(r) <= best_bin; });
-    for (std::size_t b = 0; b < bin_count; ++b)
-        (b <= best_bin ? best.children.first : best.children.second).box.add(bins[b].box);
     return best;
 }
 
-void Builder::build_children(std::size_t node, const std::pair<Range, Range>& children, int depth,
+void Builder::partition(const Range& range, const Binned& binned, const SahSplit& split, int depth,
+                        Children& children) {
+    // The children as the bins give them, before a reference moves.
+    Range& first = children.first;
+    Range& second = children.second;
+    first = {range.begin, range.begin, {}, {}};
+    second = {range.end, range.end, {}, {}};
+    for (std::size_t b = 0; b < binned.plan.count; ++b) {
+        const Bin& bin = binned.bins[b];
+        Range& child = b <= split.last_first ? first : second;
+        child.box.add(bin.box);
+        child.centres.add(bin.centres);
+        if (b <= split.last_first) first.end += bin.count;
+    }
+    second.begin = first.end;
+    children.first_bins.reset(plan_for(first, depth + 1));
+    children.second_bins.reset(plan_for(second, depth + 1));
+    // Hoare's scheme: grow the first part from the front and the second from the back,
+    // swapping only a pair that is on the wrong sides; each reference goes into its child's
+    // bins when its side is settled. On local copies of the plans: the stores cannot then be
+    // taken to change them.
+    Reference* const refs = refs_.data();
+    const BinPlan first_plan = children.first_bins.plan;
+    const BinPlan second_plan = children.second_bins.plan;
+    // Every reference of the range holds its bin (set when it was binned); bins are small
+    // whole numbers, exact in float.
+    const auto last_first = static_cast<float>(split.last_first);
+    const auto goes_first = [last_first](const Reference& r) { return r.bin() <= last_first; };
+    const auto put = [](const BinPlan& plan, Bin* bins, Reference& r) {
+        if (plan.count == 0) return;
+        const std::size_t b = plan.bin_of(r);
+        r.set_bin(b);
+        bins[b].add(r);
+    };
+    Bin* const first_bins = children.first_bins.bins;
+    Bin* const second_bins = children.second_bins.bins;
+    std::uint32_t front = range.begin, back = range.end;
+    for (;;) {
+        while (front < back && goes_first(refs[front])) {
+            put(first_plan, first_bins, refs[front++]);
+        }
+        while (front < back && !goes_first(refs[back - 1])) {
+            put(second_plan, second_bins, refs[--back]);
+        }
+        if (front == back) break;
+        std::swap(refs[front], refs[back - 1]);
+    }
+}
+
+void Builder::build_children(std::size_t node, const Range& first, const Binned* first_bins,
+                             const Range& second, const Binned* second_bins, int depth,
                              int threads) {
-    const Range& first = children.first;
-    const Range& second = children.second;
     if (threads < 2 || second.count() < kParallelBuildMinimum) {
-        build(first, depth + 1, threads);
+        build(first, first_bins, depth + 1, threads);
         nodes_[node].offset = static_cast<std::uint32_t>(nodes_.size());
-        build(second, depth + 1, threads);
+        build(second, second_bins, depth + 1, threads);
         return;
     }
     // The two children's references are disjoint ranges of refs_, so they can be
@@ -251,12 +367,12 @@ void Builder::build_children(std::size_t node, const std::pair<Range, Range>& ch
     {
         std::jthread helper([&] {
             try {
-                Builder(refs_, second_nodes).build(second, depth + 1, threads / 2);
+                Builder(refs_, second_nodes).build(second, second_bins, depth + 1, threads / 2);
             } catch (...) {
                 failure = std::current_exception();
             }
         });
-        build(first, depth + 1, threads - threads / 2);
+        build(first, first_bins, depth + 1, threads - threads / 2);
     }
     if (failure) std::rethrow_exception(failure);
     const auto base = static_cast<std::uint32_t>(nodes_.size());
@@ -267,7 +383,7 @@ void Builder::build_children(std::size_t node, const std::pair<Range, Range>& ch
     }
 }
 
-void Builder::build(const Range& range, int depth, int threads) {
+void Builder::build(const Range& range, const Binned* binned, int depth, int threads) {
     const std::size_t node = nodes_.size();
     nodes_.push_back({});
     for (int k = 0; k < 3; ++k) {
@@ -277,29 +393,41 @@ void Builder::build(const Range& range, int depth, int threads) {
     const std::uint32_t count = range.count();
     if (count == 1) return make_leaf(node, range);
 
-    const Box& c = range.centres;
-    const double extent[3] = {static_cast<double>(c.hi[0]) - c.lo[0],
-                              static_cast<double>(c.hi[1]) - c.lo[1],
-                              static_cast<double>(c.hi[2]) - c.lo[2]};
-    const int axis = extent[0] >= extent[1] && extent[0] >= extent[2] ? 0
-                     : extent[1] >= extent[2]                         ? 1
-                                                                      : 2;
+    const Spread spread(range.centres);
+    const int axis = spread.axis;
+    const double extent = spread.extent[axis];
     const bool fits_leaf = count <= Bvh::kMaxLeafSize;
-    std::pair<Range, Range> children;
-    if (!(extent[axis] > 0)) {
+    if (!(extent > 0)) {
         // All centroids in one place: no split separates them, so a leaf or an even split.
         if (fits_leaf) return make_leaf(node, range);
         const std::uint32_t mid = range.begin + count / 2;
-        children = {measured(range.begin, mid), measured(mid, range.end)};
-    } else if (depth >= Bvh::kMaxSahDepth || !std::isfinite(extent[axis])) {
-        children = median_split(range, axis);
-    } else {
-        const auto sah = sah_split(range, axis, extent[axis]);
-        if (fits_leaf && !(sah.cost < count)) return make_leaf(node, range);
-        // Every centroid in one bin, or areas beyond a double: split evenly.
-        children = sah.found ? sah.children : median_split(range, axis);
+        return build_children(node, measured(range.begin, mid), nullptr, measured(mid, range.end),
+                              nullptr, depth, threads);
     }
-    build_children(node, children, depth, threads);
+    if (depth >= Bvh::kMaxSahDepth || !std::isfinite(extent)) {
+        const auto [first, second] = median_split(range, axis);
+        return build_children(node, first, nullptr, second, nullptr, depth, threads);
+    }
+    Binned own;
+    if (binned == nullptr) {
+        own.reset(plan_for(range, depth));
+        bin(range, own);
+        binned = &own;
+    }
+    const SahSplit split = best_split(range, *binned);
+    // Partitioned even when the node becomes a leaf: the order of its references is then
+    // the one this build has always given.
+    Children children;
+    if (split.found) partition(range, *binned, split, depth, children);
+    if (fits_leaf && !(split.cost < count)) return make_leaf(node, range);
+    if (!split.found) {
+        // Every centroid in one bin, or areas beyond a double: split evenly.
+        const auto [first, second] = median_split(range, axis);
+        return build_children(node, first, nullptr, second, nullptr, depth, threads);
+    }
+    const auto pre = [](const Binned& b) { return b.plan.count > 0 ? &b : nullptr; };
+    build_children(node, children.first, pre(children.first_bins), children.second,
+                   pre(children.second_bins), depth, threads);
 }
 
 }  // namespace
@@ -396,11 +524,11 @@ Bvh::Bvh(std::span<const Bounds> boxes, int threads) {
     // reallocating (pages never touched cost no memory), and the fit afterwards trims it.
     nodes_.reserve(2 * boxes.size() - 1);
     Builder builder(refs, nodes_);
-    builder.build(builder.whole(), 0, threads);
+    builder.build(builder.whole(), nullptr, 0, threads);
     nodes_.shrink_to_fit();
     collapse();
     order_.reserve(refs.size());
-    for (const Reference& r : refs) order_.push_back(r.index);
+    for (const Reference& r : refs) order_.push_back(r.index());
 }
 
 }  // namespace rt

@@ -9,24 +9,27 @@ namespace rt::mesh_core {
 
 Vec3 read_vertex(SceneReader& reader, std::string_view name, long i) {
     const Location at = reader.next_location();
-    const Label what(name, i);
-    const Vec3 v = reader.vec3(what);
+    // The field's name is made only when a coordinate is not a plain decimal (or is bad).
+    Vec3 v;
+    for (double* c : {&v.x, &v.y, &v.z})
+        if (!reader.plain_number(*c)) *c = reader.number(Label(name, i));
     if (!(max_abs_component(v) <= kMaxCoordinate))
-        reader.fail(at, what.str() + " coordinates must be at most " +
+        reader.fail(at, Label(name, i).str() + " coordinates must be at most " +
                             format_number(kMaxCoordinate) + " in absolute value");
     return v;
 }
 
 std::uint32_t read_index(SceneReader& reader, std::string_view name, long triangle,
                          long vertex_count) {
-    const Location at = reader.next_location();
-    const Label what(name, triangle, " vertex index");
-    const double value = reader.number(what);
+    const auto what = [&] { return Label(name, triangle, " vertex index"); };
+    double value = 0;
+    if (!reader.plain_number(value)) value = reader.number(what());
+    const Location at = reader.last_number_location();
     if (value != std::floor(value))
-        reader.fail(at, what.str() + " must be a whole number, got " + reader.last_number_text());
+        reader.fail(at, what().str() + " must be a whole number, got " + reader.last_number_text());
     if (value < 0 || value >= static_cast<double>(vertex_count))
-        reader.fail(at, what.str() + " must be in [0, " + std::to_string(vertex_count) + "), got " +
-                            reader.last_number_text());
+        reader.fail(at, what().str() + " must be in [0, " + std::to_string(vertex_count) +
+                            "), got " + reader.last_number_text());
     return static_cast<std::uint32_t>(value);
 }
 

@@ -161,7 +161,7 @@ void SceneReader::read_top_level_object(Scene& scene, bool& have_viewer) {
     long type_id = 0;
     // A word where the first ID should be is most likely rt's readable language, which rtpp
     // compiles: say so, rather than only that a number was expected.
-    const std::string& first_text = lexer_->peek().text;
+    const std::string_view first_text = lexer_->peek().text;
     const bool word_first = numbers_before == 0 && !first_text.empty() &&
                             std::isalpha(static_cast<unsigned char>(first_text[0])) != 0;
     try {

@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 
 #include "rt/error.h"
@@ -54,21 +55,38 @@ SceneReader::Nest::Nest(SceneReader& reader, Location where) : reader_(reader) {
     ++reader_.depth_;
 }
 
+bool SceneReader::plain_number(double& value) {
+    const Token& token = lexer_->peek();
+    if (!token.decimal) return false;
+    value = token.value;
+    lexer_->next();
+    ++numbers_read_;
+    last_number_ = token.where;
+    // A plain decimal is short: its text is kept in a small buffer, without the string's calls.
+    static_assert(sizeof last_plain_text_ >= kMaxDecimalLength);
+    last_plain_size_ = static_cast<unsigned char>(token.text.size());
+    std::memcpy(last_plain_text_, token.text.data(), token.text.size());
+    return true;
+}
+
 double SceneReader::number(std::string_view what) {
+    double value = 0;
+    if (plain_number(value)) return value;
     const Token& token = lexer_->next();
     if (token.at_end()) fail(token.where, "unexpected end of file: expected " + std::string(what));
     ++numbers_read_;
     last_number_ = token.where;
     last_number_text_ = token.text;
+    last_plain_size_ = 0;
     if (token.quoted)
         fail(token.where, "expected " + std::string(what) + " (a number), got a quoted string");
     // strtod decides what a number is. from_chars reads the plain decimal numbers that scenes
     // are made of several times faster and, for a token it reads completely, gives the value
     // strtod gives (both round correctly); anything else (a leading '+', hexadecimal, a
-    // number out of range, not a number at all) goes to strtod.
-    const char* begin = token.text.c_str();
-    const char* end = begin + token.text.size();
-    double value = 0;
+    // number out of range, not a number at all) goes to strtod, which reads the copy (it
+    // needs the terminating NUL).
+    const char* begin = last_number_text_.c_str();
+    const char* end = begin + last_number_text_.size();
     if (const auto [stop, error] = std::from_chars(begin, end, value);
         error != std::errc{} || stop != end) {
         char* strtod_end = nullptr;
@@ -104,7 +122,10 @@ Vec3 SceneReader::vec3(std::string_view what) {
     return {x, y, z};
 }
 
-std::string SceneReader::last_number_text() const { return show_token(last_number_text_); }
+std::string SceneReader::last_number_text() const {
+    return show_token(last_plain_size_ > 0 ? std::string_view(last_plain_text_, last_plain_size_)
+                                           : std::string_view(last_number_text_));
+}
 
 Vec3 SceneReader::nonzero_vec3(std::string_view what) {
     const Location where = next_location();
@@ -165,7 +186,7 @@ std::string SceneReader::path(std::string_view what) {
     const Token& token = lexer_->next();
     if (token.at_end()) fail(token.where, "unexpected end of file: expected " + std::string(what));
     if (token.text.empty()) fail(token.where, std::string(what) + " must not be empty");
-    return token.text;
+    return std::string(token.text);
 }
 
 namespace {
