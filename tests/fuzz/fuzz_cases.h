@@ -305,9 +305,9 @@ inline std::string png_case(std::string_view bytes) {
     if (colour == 3 || in.rare(8)) {
         palette = in.exactly(3 * (1 + in.below(256)));
         if (colour == 0 || colour == 4) exact = false;  // PLTE is forbidden there
-        if (in.rare(32)) {
+        if (in.rare(32)) {                              // (an empty one is not written)
             palette.resize(in.below(800));
-            if (palette.empty() || palette.size() % 3 != 0 || palette.size() > 768)
+            if (!palette.empty() && (palette.size() % 3 != 0 || palette.size() > 768))
                 fail("a PLTE of the wrong length");
         }
     }
