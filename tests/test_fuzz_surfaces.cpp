@@ -133,3 +133,33 @@ TEST(inflate_streams_and_their_mutations) {
 TEST(nff_and_its_mutations) { run_surface("nff", rt_fuzz::nff_case, {}, 2000); }
 
 TEST(meshes_and_their_mutations) { run_surface("mesh", rt_fuzz::mesh_case, {}, 2000); }
+
+namespace {
+
+// The structured cases read any bytes as choices, so the seeds (surfaces/png, merge and
+// checkpoint) and their mutations are all files the case builds; plus bytes from the
+// generator, for choices no seed makes.
+std::vector<std::string> generated_choices(std::uint64_t seed, int count) {
+    Mutator mutator(seed);
+    std::vector<std::string> out;
+    for (int i = 0; i < count; ++i) {
+        std::string bytes(1 + mutator.below(2000), '\0');
+        for (char& c : bytes) c = static_cast<char>(mutator.below(256));
+        out.push_back(bytes);
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST(structured_pngs_and_their_mutations) {
+    run_surface("png", rt_fuzz::png_case, generated_choices(15948, 200), 3000);
+}
+
+TEST(merges_and_their_mutations) {
+    run_surface("merge", rt_fuzz::merge_case, generated_choices(19, 200), 3000);
+}
+
+TEST(checkpoints_and_their_mutations) {
+    run_surface("checkpoint", rt_fuzz::checkpoint_case, generated_choices(15, 200), 3000);
+}
