@@ -97,6 +97,14 @@ void tally(const fs::path& dir, int status, const std::string& expected, Outcome
     if (contents.damaged) ++outcome.damaged_tail;
 }
 
+// The image of an uninterrupted render of kArgs, which the resumed ones must equal.
+std::string uninterrupted(const fs::path& dir) {
+    CHECK_EQ(run_rt_args(dir, kArgs).status, 0);
+    std::string bytes = read_file(dir / "out.png");
+    fs::remove(dir / "out.png");
+    return bytes;
+}
+
 double seconds_of(const fs::path& dir, const std::vector<std::string>& args, bool slow) {
     const auto start = Clock::now();
     CHECK_EQ(WEXITSTATUS(wait_for(spawn_rt(dir, args, slow_if(slow)))), 0);
@@ -108,10 +116,7 @@ double seconds_of(const fs::path& dir, const std::vector<std::string>& args, boo
 
 TEST(renders_killed_at_random_moments_resume_to_the_uninterrupted_bytes) {
     const fs::path dir = resume_dir("kill_resume");
-    const RunResult whole = run_rt_args(dir, kArgs);
-    CHECK_EQ(whole.status, 0);
-    const std::string expected = read_file(dir / "out.png");
-    fs::remove(dir / "out.png");
+    const std::string expected = uninterrupted(dir);
     // How long a checkpointing render takes, written at speed and slowly: kills are spread
     // over a little more than that.
     const double fast = seconds_of(dir, checkpointing(false), false);
@@ -144,10 +149,7 @@ TEST(renders_killed_at_random_moments_resume_to_the_uninterrupted_bytes) {
 // second is 3 ms away, the file's size is off the records' boundaries.
 TEST(renders_killed_inside_a_record_write_resume_to_the_uninterrupted_bytes) {
     const fs::path dir = resume_dir("kill_in_record");
-    const RunResult whole = run_rt_args(dir, kArgs);
-    CHECK_EQ(whole.status, 0);
-    const std::string expected = read_file(dir / "out.png");
-    fs::remove(dir / "out.png");
+    const std::string expected = uninterrupted(dir);
     const std::uintmax_t record = 26 + 24 * 320;  // a row of the 320-pixel-wide image
     for (int trial = 0; trial < 3; ++trial) {
         const pid_t pid = spawn_rt(dir, checkpointing(false), slow_if(true));
@@ -175,10 +177,7 @@ TEST(renders_killed_inside_a_record_write_resume_to_the_uninterrupted_bytes) {
 
 TEST(sigterm_at_random_moments_leaves_only_complete_records) {
     const fs::path dir = resume_dir("term_resume");
-    const RunResult whole = run_rt_args(dir, kArgs);
-    CHECK_EQ(whole.status, 0);
-    const std::string expected = read_file(dir / "out.png");
-    fs::remove(dir / "out.png");
+    const std::string expected = uninterrupted(dir);
     // Moments chosen by how far the render has got (its checkpoint's size: a header, then 240
     // rows of 7,706 bytes), so that every signal lands while it renders, however slow the
     // machine is.
@@ -199,9 +198,7 @@ TEST(sigterm_at_random_moments_leaves_only_complete_records) {
 
 TEST(renders_killed_twice_before_the_end_still_resume_to_the_same_bytes) {
     const fs::path dir = resume_dir("twice_resume");
-    const RunResult whole = run_rt_args(dir, kArgs);
-    const std::string expected = read_file(dir / "out.png");
-    fs::remove(dir / "out.png");
+    const std::string expected = uninterrupted(dir);
     const double slow = seconds_of(dir, checkpointing(false), true);
     std::mt19937 random(11);
     std::uniform_real_distribution<double> when(0.05 * slow, 0.45 * slow);
