@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <vector>
 
 #include "deflate_tables.h"
@@ -24,8 +25,19 @@ constexpr int kNiceLength = 128;
 constexpr std::size_t kTooFar = 4096;
 // zlib keeps a match's whole length inside the window it can see; so do we.
 constexpr std::size_t kMaxDistance = kWindowSize - kMaxMatch - kMinMatch - 1;
-constexpr int kHashBits = 15;
-constexpr std::size_t kWindowMask = kWindowSize - 1;
+// Hash bits: 15 (zlib's at its default memory level), fewer for an input too short to fill
+// them, so that a short text chunk or checkpoint record does not fill half a megabyte of
+// tables. The same function of the input on every machine.
+constexpr int kMaxHashBits = 15;
+constexpr int kMinHashBits = 8;
+int hash_bits_for(std::size_t size) {
+    return std::clamp(static_cast<int>(std::bit_width(size)), kMinHashBits, kMaxHashBits);
+}
+// Positions back to the window's start: the window, or the input if it is shorter (every
+// position of a short input is its own slot, as it would be in the whole window).
+std::size_t chain_slots_for(std::size_t size) {
+    return std::min<std::size_t>(kWindowSize, std::bit_ceil(std::max<std::size_t>(size, 1)));
+}
 // Symbols per block: zlib's at its default memory level. Each block gets its own codes.
 constexpr std::size_t kBlockSymbols = 16384;
 
@@ -259,8 +271,10 @@ class Encoder {
         : data_(reinterpret_cast<const unsigned char*>(data.data())),
           size_(data.size()),
           writer_(out),
-          head_(std::size_t{1} << kHashBits, -1),
-          prev_(kWindowSize, -1) {
+          hash_bits_(hash_bits_for(size_)),
+          slot_mask_(chain_slots_for(size_) - 1),
+          head_(std::size_t{1} << hash_bits_, -1),
+          prev_(slot_mask_ + 1, -1) {
         symbols_.reserve(kBlockSymbols);
     }
 
@@ -270,14 +284,14 @@ class Encoder {
     std::size_t hash(std::size_t p) const {
         const std::uint32_t v =
             (std::uint32_t{data_[p]} << 16) | (std::uint32_t{data_[p + 1]} << 8) | data_[p + 2];
-        return (v * 2654435761u) >> (32 - kHashBits);
+        return (v * 2654435761u) >> (32 - hash_bits_);
     }
     // Enters position p (which has three bytes after it) and returns the previous position
     // with the same hash, or -1.
     std::int64_t insert(std::size_t p) {
         const std::size_t h = hash(p);
         const std::int64_t previous = head_[h];
-        prev_[p & kWindowMask] = previous;
+        prev_[p & slot_mask_] = previous;
         head_[h] = static_cast<std::int64_t>(p);
         return previous;
     }
@@ -297,6 +311,8 @@ class Encoder {
     const unsigned char* data_;
     std::size_t size_;
     BitWriter writer_;
+    int hash_bits_;
+    std::size_t slot_mask_;
     std::vector<std::int64_t> head_;
     std::vector<std::int64_t> prev_;
     std::vector<Symbol> symbols_;
@@ -325,7 +341,7 @@ int Encoder::longest_match(std::size_t pos, std::int64_t candidate, int best,
                 if (length >= nice) break;
             }
         }
-        candidate = prev_[static_cast<std::size_t>(candidate) & kWindowMask];
+        candidate = prev_[static_cast<std::size_t>(candidate) & slot_mask_];
     }
     return best;
 }
