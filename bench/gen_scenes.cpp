@@ -1,7 +1,9 @@
 // Writes the benchmark scenes, each twice: as an rt scene (NAME.in) and as the equivalent
 // POV-Ray 3.7 scene (NAME.pov), so that both renderers can be timed on the same picture.
 //   rt_bench_scenes [--size N] DIR [SCENE ...]
-// SCENE is spheres-COUNT, mesh-COUNT (triangles) or mirror-COUNT (spheres, a square grid);
+// SCENE is spheres-COUNT, mesh-COUNT (triangles), mirror-COUNT (spheres, a square grid),
+// shells-COUNT, rings-COUNT (chain-mail rings of cylinders), gears-COUNT (concave polygons),
+// lattice-SIDE (cylinders and spheres), sphereflake-LEVELS, tetra-LEVELS or mountain-LEVELS;
 // COUNT may end in k or m. The default is spheres-10k spheres-100k spheres-1m mesh-500k
 // mirror-49. --size sets the image's width and height (default 1024). The output depends only
 // on the arguments: every random number comes from a fixed seed.
@@ -71,11 +73,29 @@ struct Sphere {
     double radius = 1;
 };
 
-// Spheres that share one finish: rt reads them after one default surface (105, then 106
+// An open cylinder from `base` to base + axis (rt's ID 9 from 0 to 1 along the axis).
+struct Cylinder {
+    Vec base, axis;
+    double radius = 1;
+};
+
+// A flat polygon, concave allowed (ID 11): its vertices in order round the outline, given in
+// the plane's own coordinates, vertex k at origin + points[k][0] u + points[k][1] v. rt reads
+// the vertices; POV-Ray, whose polygon is lost where its points are not coplanar to its own
+// tolerance (seven digits are not), reads the 2D points and the plane as a matrix.
+struct Polygon {
+    Vec origin, u, v;
+    std::vector<std::array<double, 2>> points;
+    Vec vertex(std::size_t k) const { return origin + points[k][0] * u + points[k][1] * v; }
+};
+
+// Objects that share one finish: rt reads them after one default surface (105, then 106
 // for each), POV-Ray after one #declare, which keeps both files small.
-struct SphereGroup {
+struct Group {
     Finish finish;
     std::vector<Sphere> spheres;
+    std::vector<Cylinder> cylinders = {};
+    std::vector<Polygon> polygons = {};
 };
 
 struct Plane {
@@ -106,7 +126,7 @@ struct Scene {
     Vec ambient;
     std::vector<Light> lights;
     std::vector<Plane> planes;
-    std::vector<SphereGroup> groups;
+    std::vector<Group> groups;
     std::vector<Mesh> meshes;
 };
 
@@ -149,7 +169,7 @@ Scene spheres(long count, int size) {
     const double radius = 0.085 * std::sqrt(1e4 / static_cast<double>(count));
     constexpr long kFinishes = 16;
     for (long g = 0; g < kFinishes; ++g) {
-        SphereGroup group{random_finish(random), {}};
+        Group group{random_finish(random), {}};
         for (long i = g; i < count; i += kFinishes) {
             const double r = radius * random.uniform(0.6, 1.4);
             group.spheres.push_back({{random.uniform(-10, 10), r + random.uniform(0, 2 * radius),
@@ -234,7 +254,7 @@ Scene mirror(long count, int size) {
 // A sphereflake in the SPD's spirit: a sphere with nine spheres a third its size round it (six
 // round its equator, three above), each of them with nine more, `levels` deep (COUNT is the
 // level count: 9^0 + ... + 9^levels spheres). Mirror-like, over a floor.
-void flake(SphereGroup& group, Vec centre, double radius, Vec up, int level) {
+void flake(Group& group, Vec centre, double radius, Vec up, int level) {
     group.spheres.push_back({centre, radius});
     if (level == 0) return;
     // A frame round `up`: child directions are fixed angles in it.
@@ -256,7 +276,7 @@ void flake(SphereGroup& group, Vec centre, double radius, Vec up, int level) {
 Scene sphereflake(long levels, int size) {
     Scene scene = lit_scene(4, camera({2.1, 2.6, -3.9}, {0, 0.55, 0}, 45, size),
                             {{0.55, 0.5, 0.45}, 0.15, 10, 0.8});
-    SphereGroup group{{{0.75, 0.7, 0.65}, 0.5, 60, 0.5}, {}};
+    Group group{{{0.75, 0.7, 0.65}, 0.5, 60, 0.5}, {}};
     flake(group, {0, 0.6, 0}, 0.5, {0, 1, 0}, static_cast<int>(std::min(levels, 7L)));
     scene.groups.push_back(std::move(group));
     return scene;
@@ -367,12 +387,128 @@ Scene mountain(long levels, int size) {
             m.triangles.push_back({a, c, d});
         }
     scene.meshes.push_back(std::move(m));
-    SphereGroup balls{{{0.9, 0.95, 1}, 0.7, 120, 0.2}, {}};
+    Group balls{{{0.9, 0.95, 1}, 0.7, 120, 0.2}, {}};
     for (int k = 0; k < 4; ++k) {
         const double angle = std::numbers::pi * (0.2 + 0.4 * k);
         balls.spheres.push_back({{3.6 * std::cos(angle), 0.5, -3.6 * std::sin(angle) + 0.5}, 0.5});
     }
     scene.groups.push_back(std::move(balls));
+    return scene;
+}
+
+// A frame (two unit vectors perpendicular to each other and to `normal`).
+std::array<Vec, 2> frame_round(Vec normal) {
+    const Vec side = normalized(std::fabs(normal.x) < 0.9 ? cross(normal, {1, 0, 0})
+                                                          : cross(normal, {0, 1, 0}));
+    return {side, cross(normal, side)};
+}
+
+// Chain-mail rings in the spirit of the SPD's "rings": COUNT rings on a square grid over the
+// floor, each a circle of twelve open cylinders with a sphere at every joint, tilted by a
+// seeded random angle so that neighbours interlock. Long thin overlapping boxes.
+Scene rings(long count, int size) {
+    const long side = std::max(1L, std::lround(std::ceil(std::sqrt(static_cast<double>(count)))));
+    const double spacing = 1.7, extent = spacing * static_cast<double>(side - 1) / 2;
+    Scene scene = lit_scene(3, camera({0, extent + 4, -1.3 * extent - 5}, {0, 0.5, 0}, 50, size),
+                            {{0.5, 0.5, 0.55}, 0.2, 20, 0.7});
+    Random random(6);
+    constexpr long kFinishes = 6;
+    for (long g = 0; g < kFinishes; ++g) scene.groups.push_back({random_finish(random), {}});
+    constexpr int kSegments = 12;
+    constexpr double kRadius = 1, kTube = 0.1;
+    for (long n = 0; n < count; ++n) {
+        const long i = n / side, j = n % side;
+        const Vec centre{static_cast<double>(i) * spacing - extent, kRadius + 0.3,
+                         static_cast<double>(j) * spacing - extent};
+        const double tilt = random.uniform(0.5, 1.1) * ((i + j) % 2 == 0 ? 1 : -1);
+        const double turn = random.uniform(0, std::numbers::pi);
+        const Vec normal{std::sin(tilt) * std::cos(turn), std::cos(tilt),
+                         std::sin(tilt) * std::sin(turn)};
+        const auto [u, v] = frame_round(normal);
+        Group& group = scene.groups[static_cast<std::size_t>(n % kFinishes)];
+        for (int k = 0; k < kSegments; ++k) {
+            const auto at = [&](int m) {
+                const double a = 2 * std::numbers::pi * m / kSegments;
+                return centre + kRadius * (std::cos(a) * u + std::sin(a) * v);
+            };
+            group.spheres.push_back({at(k), kTube});
+            group.cylinders.push_back({at(k), at(k + 1) - at(k), kTube});
+        }
+    }
+    return scene;
+}
+
+// A cubic lattice of COUNT nodes a side: a sphere at every node and an open cylinder along
+// every edge between neighbours (COUNT^3 spheres, 3 COUNT^2 (COUNT - 1) cylinders), shiny,
+// seen from a corner, so that rays pass many rods' boxes before they hit one.
+Scene lattice(long count, int size) {
+    const long n = std::min(count, 200L);
+    const double step = 3.0 / static_cast<double>(std::max(1L, n - 1));
+    Scene scene = lit_scene(3, camera({3.6, 4.4, -4.2}, {0, 1.7, 0}, 45, size),
+                            {{0.5, 0.55, 0.6}, 0.15, 10, 0.8});
+    Group nodes{{{0.9, 0.75, 0.35}, 0.5, 60, 0.5}, {}};
+    Group rods{{{0.6, 0.65, 0.75}, 0.3, 30, 0.7}, {}};
+    const double rod = 0.06 * step, ball = 0.14 * step;
+    const auto node = [&](long i, long j, long k) {
+        return Vec{static_cast<double>(i) * step - 1.5, static_cast<double>(j) * step + 0.2,
+                   static_cast<double>(k) * step - 1.5};
+    };
+    for (long i = 0; i < n; ++i)
+        for (long j = 0; j < n; ++j)
+            for (long k = 0; k < n; ++k) {
+                const Vec p = node(i, j, k);
+                nodes.spheres.push_back({p, ball});
+                if (i + 1 < n) rods.cylinders.push_back({p, node(i + 1, j, k) - p, rod});
+                if (j + 1 < n) rods.cylinders.push_back({p, node(i, j + 1, k) - p, rod});
+                if (k + 1 < n) rods.cylinders.push_back({p, node(i, j, k + 1) - p, rod});
+            }
+    scene.groups.push_back(std::move(nodes));
+    scene.groups.push_back(std::move(rods));
+    return scene;
+}
+
+// Gears in the spirit of the SPD's "gears": COUNT gears on a grid, standing at seeded random
+// angles, each a slab whose two faces are concave polygons of 24 teeth (96 vertices) and
+// whose sides are 96 four-sided polygons. Large concave polygons with big, mostly empty boxes.
+Scene gears(long count, int size) {
+    const long side = std::max(1L, std::lround(std::ceil(std::sqrt(static_cast<double>(count)))));
+    const double spacing = 2.3, extent = spacing * static_cast<double>(side - 1) / 2;
+    Scene scene = lit_scene(3, camera({0, extent + 4, -1.3 * extent - 5}, {0, 0.8, 0}, 50, size),
+                            {{0.5, 0.5, 0.55}, 0.2, 20, 0.7});
+    Random random(7);
+    constexpr long kFinishes = 5;
+    for (long g = 0; g < kFinishes; ++g) scene.groups.push_back({random_finish(random), {}});
+    constexpr int kTeeth = 24;
+    constexpr double kOuter = 1, kInner = 0.82, kThickness = 0.2;
+    for (long n = 0; n < count; ++n) {
+        const long i = n / side, j = n % side;
+        const Vec centre{static_cast<double>(i) * spacing - extent, kOuter + 0.1,
+                         static_cast<double>(j) * spacing - extent};
+        const double turn = random.uniform(0, std::numbers::pi);
+        const double lean = random.uniform(-0.4, 0.4);
+        // The gear's axis, lying nearly flat: the gear stands on its rim.
+        const Vec axis = normalized({std::cos(turn), std::sin(lean), std::sin(turn)});
+        const auto [u, v] = frame_round(axis);
+        // Four vertices per tooth: root, flank up, top, flank down.
+        std::vector<std::array<double, 2>> outline;
+        for (int t = 0; t < kTeeth; ++t)
+            for (int q = 0; q < 4; ++q) {
+                const double a = 2 * std::numbers::pi * (t + q / 4.0) / kTeeth;
+                const double r = q == 0 || q == 3 ? kInner : kOuter;
+                outline.push_back({r * std::cos(a), r * std::sin(a)});
+            }
+        const Vec front = centre + 0.5 * kThickness * axis;
+        const Vec back = centre - 0.5 * kThickness * axis;
+        Group& group = scene.groups[static_cast<std::size_t>(n % kFinishes)];
+        group.polygons.push_back({front, u, v, outline});
+        group.polygons.push_back({back, u, v, {outline.rbegin(), outline.rend()}});
+        const auto at = [&](std::size_t k) { return outline[k % outline.size()]; };
+        for (std::size_t k = 0; k < outline.size(); ++k) {
+            const Vec a = back + at(k)[0] * u + at(k)[1] * v;
+            const Vec b = back + at(k + 1)[0] * u + at(k + 1)[1] * v;
+            group.polygons.push_back({a, b - a, front - back, {{0, 0}, {1, 0}, {1, 1}, {0, 1}}});
+        }
+    }
     return scene;
 }
 
@@ -415,9 +551,16 @@ void write_rt(std::ostream& out, const Scene& s) {
     for (const Light& l : s.lights) out << "104  " << l.position << "  " << l.intensity << "\n";
     for (const Plane& p : s.planes)
         out << "2  " << p.offset << "  " << p.normal << "  " << RtSurface{p.finish} << "\n";
-    for (const SphereGroup& g : s.groups) {
+    for (const Group& g : s.groups) {
         out << "105  " << RtSurface{g.finish} << "\n";
         for (const Sphere& sp : g.spheres) out << "1 " << sp.radius << ' ' << sp.centre << " 106\n";
+        for (const Cylinder& cyl : g.cylinders)
+            out << "9 " << cyl.radius << " 0 1  " << cyl.base << "  " << cyl.axis << " 106\n";
+        for (const Polygon& p : g.polygons) {
+            out << "11 " << p.points.size();
+            for (std::size_t k = 0; k < p.points.size(); ++k) out << "  " << p.vertex(k);
+            out << " 106\n";
+        }
     }
     for (const Mesh& m : s.meshes) {
         out << "14  " << m.vertices.size() << ' ' << m.triangles.size() << "\n";
@@ -449,6 +592,19 @@ void write_pov(std::ostream& out, const Scene& s) {
         for (const Sphere& sp : s.groups[i].spheres)
             out << "sphere { " << Pov{sp.centre} << ", " << sp.radius << " texture { T" << i
                 << " } }\n";
+        for (const Cylinder& cyl : s.groups[i].cylinders)
+            out << "cylinder { " << Pov{cyl.base} << ", " << Pov{cyl.base + cyl.axis} << ", "
+                << cyl.radius << " open texture { T" << i << " } }\n";
+        // POV-Ray's polygon is closed by repeating its first vertex; both use even-odd.
+        for (const Polygon& p : s.groups[i].polygons) {
+            out << "polygon { " << p.points.size() + 1;
+            for (const auto& q : p.points) out << ", <" << q[0] << ", " << q[1] << '>';
+            const Vec w = cross(p.u, p.v);
+            out << ", <" << p.points[0][0] << ", " << p.points[0][1] << "> matrix <" << p.u.x
+                << ", " << p.u.y << ", " << p.u.z << ", " << p.v.x << ", " << p.v.y << ", "
+                << p.v.z << ", " << w.x << ", " << w.y << ", " << w.z << ", " << p.origin.x
+                << ", " << p.origin.y << ", " << p.origin.z << "> texture { T" << i << " } }\n";
+        }
     }
     for (const Mesh& m : s.meshes) {
         out << "mesh2 {\n  vertex_vectors { " << m.vertices.size();
@@ -484,6 +640,9 @@ Scene make_scene(const std::string& name, int size) {
                   : kind == "shells"      ? shells(count, size)
                   : kind == "tetra"       ? tetra(count, size)
                   : kind == "mountain"    ? mountain(count, size)
+                  : kind == "rings"       ? rings(count, size)
+                  : kind == "lattice"     ? lattice(count, size)
+                  : kind == "gears"       ? gears(count, size)
                                           : throw std::invalid_argument("unknown kind");
     scene.name = name;
     return scene;
@@ -500,8 +659,9 @@ void write_file(const std::filesystem::path& path, const Scene& scene,
 
 int usage() {
     std::cerr << "usage: rt_bench_scenes [--size N] DIR [SCENE ...]\n"
-                 "  SCENE: spheres-COUNT, mesh-COUNT, mirror-COUNT, shells-COUNT, or\n"
-                 "  sphereflake-LEVELS, tetra-LEVELS, mountain-LEVELS; COUNT may end in k or m\n";
+                 "  SCENE: spheres-COUNT, mesh-COUNT, mirror-COUNT, shells-COUNT, rings-COUNT,\n"
+                 "  gears-COUNT, lattice-SIDE, or sphereflake-LEVELS, tetra-LEVELS,\n"
+                 "  mountain-LEVELS; COUNT may end in k or m\n";
     return 2;
 }
 
