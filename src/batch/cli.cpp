@@ -374,7 +374,9 @@ ImageMetadata image_metadata(const CommandLine& cl) {
     ImageMetadata metadata;
     if (!cl.metadata) return metadata;
     metadata.set("Software", "rt " RT_VERSION);
-    metadata.set("Scene", cl.input == "-" ? "<stdin>" : cl.input);
+    // As messages show it: a scene's name with a control character (a line break, say) is
+    // recorded escaped, so that every format can hold it.
+    metadata.set("Scene", cl.input == "-" ? "<stdin>" : show_token(cl.input, kShowWhole));
     const RenderOptions& r = cl.render;
     std::string options = "-d " + std::to_string(r.max_depth) + " -w " +
                           exact_number(r.min_weight) + " -m " + mode_name(r.mode) + " -s " +

@@ -27,10 +27,12 @@ std::string encode_ppm(const SampleImage& image, const ImageMetadata& metadata) 
             throw Error(quote_token(key, kShowWhole) +
                         " cannot be a PPM metadata key (one word, no spaces or control "
                         "characters)");
-        out += "# " + key + ": ";
-        // A comment ends at the line's end, so a value cannot hold one.
-        for (const char c : value) out += c == '\n' || c == '\r' ? ' ' : c;
-        out += '\n';
+        // A comment ends at the line's end, so a value cannot hold a line break (nor end in
+        // a carriage return, which reading takes for a CRLF's): refused, never changed.
+        if (value.find_first_of("\r\n") != std::string::npos)
+            throw Error("the value of PPM metadata key " + quote_token(key, kShowWhole) +
+                        " holds a line break, which a PPM comment cannot hold (PNG can)");
+        out += "# " + key + ": " + value + '\n';
     }
     out += std::to_string(image.width) + ' ' + std::to_string(image.height) + '\n' +
            std::to_string(image.max_value()) + '\n';
