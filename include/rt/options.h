@@ -26,7 +26,7 @@ struct RenderOptions {
     bool accelerate = true;
     // Not a command-line option: when set, this answers every ray query instead of the
     // hierarchy or the linear scan (a hook for measuring another library's ray queries under
-    // rt's shading, bench/embree). It must outlive the render.
+    // rt's shading, bench/embree), whatever `accelerate` says. It must outlive the render.
     const RayQueries* queries = nullptr;
 
     // Parts of the illumination model that the --no-* switches turn off, for testing.

@@ -61,7 +61,8 @@ struct RenderStats {
 // Traces rays through a scene. A Tracer counts the rays it traces and remembers the last
 // blocker of each light, so tracing changes it and each thread uses its own; the scene is
 // shared read-only. With options.accelerate (the default) the scene's
-// index must have been built (read_scene does), or construction throws std::logic_error.
+// index must have been built (read_scene does), or construction throws std::logic_error;
+// with options.queries it is not used, nor needed.
 class Tracer {
   public:
     Tracer(const Scene& scene, const RenderOptions& options);
