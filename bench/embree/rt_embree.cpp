@@ -13,16 +13,19 @@
 // What Embree holds (one geometry per kind, built with RTC_BUILD_QUALITY_HIGH):
 // - every mesh (IDs 14, 15, 16) as native triangles, in float;
 // - every sphere (ID 1) as a native sphere (RTC_GEOMETRY_TYPE_SPHERE_POINT), in float;
+// - every polygon (11) and triangle (5) as native triangles, a fan from its first corner
+//   (which covers it, concave or not: primitives/flat_corners.h);
 // - every other bounded object as user geometry whose callbacks are rt's own intersect
 //   functions on the double-precision ray;
 // and unbounded objects (planes, affines of them) are tested by rt after Embree, as rt does.
-// A native candidate that Embree finds is confirmed by rt's own test of that one triangle or
-// sphere (a filter function), which also gives the Hit the shading needs; so every answer is
+// A native candidate that Embree finds is confirmed by rt's own test of that one mesh
+// triangle, sphere, polygon or triangle (a filter function), which also gives the Hit the shading needs; so every answer is
 // one of rt's, and they differ from rt's only where Embree's float tests miss a primitive rt
 // hits (or order two candidates differently by less than float precision).
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -38,6 +41,7 @@
 #include <vector>
 
 #include "accel/object_index.h"
+#include "primitives/flat_corners.h"
 #include "primitives/mesh_core.h"
 #include "rt/error.h"
 #include "rt/reader.h"
@@ -87,14 +91,17 @@ struct Query {
     }
 };
 
-enum class Kind { mesh, spheres, others };
+enum class Kind { mesh, spheres, flat, others };
 
-// One Embree geometry: a mesh, or all the scene's spheres, or all its other bounded objects.
+// One Embree geometry: a mesh, or all the scene's spheres, or all its polygons and triangles
+// (as fans of triangles), or all its other bounded objects.
 struct Geometry {
     Kind kind;
     const Scene* scene;
     std::vector<std::uint32_t> objects;  // by primID (a mesh: its one object)
     const mesh_core::Core* core = nullptr;
+    std::vector<Vec3> corners;                      // flat: the fans' corners
+    std::vector<std::array<unsigned, 3>> triangles;  // flat: by primID, indices into corners
 
     const Object& object(unsigned prim) const { return scene->objects[objects[prim]]; }
 
@@ -185,8 +192,9 @@ void report_error(void*, RTCError code, const char* message) {
 class EmbreeQueries : public RayQueries {
   public:
     EmbreeQueries(const Scene& scene, RTCDevice device, bool robust) : scene_(scene) {
-        Geometry spheres{Kind::spheres, &scene, {}, nullptr};
-        Geometry others{Kind::others, &scene, {}, nullptr};
+        Geometry spheres{Kind::spheres, &scene, {}, nullptr, {}, {}};
+        Geometry others{Kind::others, &scene, {}, nullptr, {}, {}};
+        Geometry flat{Kind::flat, &scene, {}, nullptr, {}, {}};
         for (std::uint32_t i = 0; i < scene.objects.size(); ++i) {
             const Object& o = scene.objects[i];
             const Bounds b = o.shape.bounds();
@@ -198,14 +206,21 @@ class EmbreeQueries : public RayQueries {
             } else if (const mesh_core::Core* core = mesh_core_of(o)) {
                 if (!core->triangles.empty())
                     geometries_.push_back(std::make_unique<Geometry>(
-                        Geometry{Kind::mesh, &scene, {i}, core}));
+                        Geometry{Kind::mesh, &scene, {i}, core, {}, {}}));
             } else if (o.shape.type->id == 1) {
                 spheres.objects.push_back(i);
+            } else if (const std::vector<Vec3> corners = flat_corners(o.shape); !corners.empty()) {
+                const auto first = static_cast<unsigned>(flat.corners.size());
+                flat.corners.insert(flat.corners.end(), corners.begin(), corners.end());
+                for (unsigned k = 1; k + 1 < corners.size(); ++k) {
+                    flat.triangles.push_back({first, first + k, first + k + 1});
+                    flat.objects.push_back(i);
+                }
             } else {
                 others.objects.push_back(i);
             }
         }
-        for (Geometry* g : {&spheres, &others})
+        for (Geometry* g : {&spheres, &flat, &others})
             if (!g->objects.empty()) geometries_.push_back(std::make_unique<Geometry>(*g));
 
         rtc_ = rtcNewScene(device);
@@ -275,19 +290,22 @@ class EmbreeQueries : public RayQueries {
         return r;
     }
 
+    static void fill_vertices(RTCGeometry geometry, const std::vector<Vec3>& vertices) {
+        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                              RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                              vertices.size()));
+        for (std::size_t i = 0; i < vertices.size(); ++i) {
+            v[3 * i] = static_cast<float>(vertices[i].x);
+            v[3 * i + 1] = static_cast<float>(vertices[i].y);
+            v[3 * i + 2] = static_cast<float>(vertices[i].z);
+        }
+    }
+
     static RTCGeometry make_geometry(RTCDevice device, const Geometry& g) {
         const auto count = static_cast<unsigned>(g.objects.size());
         if (g.kind == Kind::mesh) {
             RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-            const auto& vertices = g.core->vertices;
-            auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-                geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                vertices.size()));
-            for (std::size_t i = 0; i < vertices.size(); ++i) {
-                v[3 * i] = static_cast<float>(vertices[i].x);
-                v[3 * i + 1] = static_cast<float>(vertices[i].y);
-                v[3 * i + 2] = static_cast<float>(vertices[i].z);
-            }
+            fill_vertices(geometry, g.core->vertices);
             // primID is the triangle's place in the core's leaf order: Hit::part.
             const auto& triangles = g.core->triangles;
             auto* index = static_cast<unsigned*>(
@@ -295,6 +313,18 @@ class EmbreeQueries : public RayQueries {
                                         3 * sizeof(unsigned), triangles.size()));
             for (std::size_t i = 0; i < triangles.size(); ++i)
                 for (std::size_t k = 0; k < 3; ++k) index[3 * i + k] = triangles[i].vertex[k];
+            rtcSetGeometryIntersectFilterFunction(geometry, filter_nearest);
+            rtcSetGeometryOccludedFilterFunction(geometry, filter_any);
+            return geometry;
+        }
+        if (g.kind == Kind::flat) {
+            RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+            fill_vertices(geometry, g.corners);
+            auto* index = static_cast<unsigned*>(
+                rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                        3 * sizeof(unsigned), g.triangles.size()));
+            for (std::size_t i = 0; i < g.triangles.size(); ++i)
+                for (std::size_t k = 0; k < 3; ++k) index[3 * i + k] = g.triangles[i][k];
             rtcSetGeometryIntersectFilterFunction(geometry, filter_nearest);
             rtcSetGeometryOccludedFilterFunction(geometry, filter_any);
             return geometry;
