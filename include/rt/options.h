@@ -10,6 +10,8 @@ inline constexpr int kDefaultAdaptiveSamples = 3;
 
 enum class RenderMode { trace, depth, colour, normal };
 
+class RayQueries;  // rt/trace.h
+
 struct RenderOptions {
     int max_depth = 7;         // -d: secondary rays deeper than this are not traced
     double min_weight = 0.01;  // -w: nor are rays whose weight falls below this
@@ -22,6 +24,10 @@ struct RenderOptions {
     // --no-bvh turns this off: every ray is tested against every object in file order. The
     // image is the same either way; the linear scan is the oracle the hierarchy is tested by.
     bool accelerate = true;
+    // Not a command-line option: when set, this answers every ray query instead of the
+    // hierarchy or the linear scan (a hook for measuring another library's ray queries under
+    // rt's shading, bench/embree), whatever `accelerate` says. It must outlive the render.
+    const RayQueries* queries = nullptr;
 
     // Parts of the illumination model that the --no-* switches turn off, for testing.
     bool ambient = true;

@@ -24,6 +24,19 @@ struct SceneHit {
     Hit hit;
 };
 
+// What answers a tracer's two ray queries when RenderOptions::queries is set, in place of the
+// scene's hierarchy or the linear scan. Every render thread calls it at once: it must be
+// thread-safe. The tracer's object_tests do not count its tests.
+class RayQueries {
+  public:
+    virtual ~RayQueries() = default;
+    // The nearest hit with range.t_min < t < range.t_max, as the linear scan defines it (of
+    // objects hit at the same distance, the earliest in the scene's list).
+    virtual bool closest(const Ray& ray, Interval range, SceneHit& found) const = 0;
+    // Whether any object lies along the ray in range.
+    virtual bool any(const Ray& ray, Interval range) const = 0;
+};
+
 // How many rays of each kind a render traced, and how many times an object was asked whether
 // a ray hits it (a mesh counts once, however many of its triangles it tests).
 struct RenderStats {
@@ -48,7 +61,8 @@ struct RenderStats {
 // Traces rays through a scene. A Tracer counts the rays it traces and remembers the last
 // blocker of each light, so tracing changes it and each thread uses its own; the scene is
 // shared read-only. With options.accelerate (the default) the scene's
-// index must have been built (read_scene does), or construction throws std::logic_error.
+// index must have been built (read_scene does), or construction throws std::logic_error;
+// with options.queries it is not used, nor needed.
 class Tracer {
   public:
     Tracer(const Scene& scene, const RenderOptions& options);

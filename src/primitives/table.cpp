@@ -2,6 +2,7 @@
 // NAME::functions at its end, and two lines here: its declaration and its row.
 #include <cmath>
 
+#include "primitives/flat_corners.h"
 #include "rt/primitive.h"
 #include "scene/id_table.h"
 
@@ -107,6 +108,12 @@ bool Shape::collect(const Ray& ray, double t_min, Crossings& out) const {
     // No crossing at all: the whole ray is on one side, so ask at a point well along it,
     // away from any surface the ray may start on.
     return inside(ray.at(2 * t_min + 1));
+}
+
+std::vector<Vec3> flat_corners(const Shape& shape) {
+    if (shape.type->id == 11) return polygon::corners(shape.data.get());
+    if (shape.type->id == 5) return triangle::corners(shape.data.get());
+    return {};
 }
 
 }  // namespace rt

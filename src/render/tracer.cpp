@@ -75,6 +75,9 @@ Tracer::Tracer(const Scene& scene, const RenderOptions& options)
       options_(options),
       escaped_(scene.background.value_or(scene.ambient)),
       last_blockers_(scene.lights.size()) {
+    // A backend replaces the hierarchy: it is asked on the path of the linear scan, so that
+    // rt's own path (the hierarchy's) does not test for it on every ray.
+    if (options_.queries != nullptr) options_.accelerate = false;
     if (options_.accelerate && (index_ == nullptr || !index_->covers(scene_.objects.size())))
         throw std::logic_error("Tracer: the scene's index was not built (Scene::build_index)");
 }
@@ -85,6 +88,11 @@ std::optional<SceneHit> Tracer::closest_hit(const Ray& ray) {
         ObjectIndex::Found found;
         if (!index_->closest(ray, range, found, &stats_.object_tests)) return std::nullopt;
         return SceneHit{&scene_.objects[found.object], found.hit};
+    }
+    if (options_.queries != nullptr) {
+        SceneHit found{};
+        if (!options_.queries->closest(ray, range, found)) return std::nullopt;
+        return found;
     }
     // The linear scan: every object in file order.
     std::optional<SceneHit> best;
@@ -105,6 +113,7 @@ bool Tracer::blocked(const Ray& ray, double distance, LastBlocker* last) {
     ++stats_.shadow_rays;
     const Interval range{hit_tolerance(ray.origin), distance};
     if (options_.accelerate) return index_->any(ray, range, last, &stats_.object_tests);
+    if (options_.queries != nullptr) return options_.queries->any(ray, range);
     return std::any_of(scene_.objects.begin(), scene_.objects.end(), [&](const Object& o) {
         ++stats_.object_tests;
         return o.shape.intersect_any(ray, range);
