@@ -424,7 +424,9 @@ Scene rings(long count, int size) {
         const double turn = random.uniform(0, std::numbers::pi);
         const Vec normal{std::sin(tilt) * std::cos(turn), std::cos(tilt),
                          std::sin(tilt) * std::sin(turn)};
-        const auto [u, v] = frame_round(normal);
+        // Plain variables: clang 14 cannot capture structured bindings in a lambda.
+        const std::array<Vec, 2> frame = frame_round(normal);
+        const Vec u = frame[0], v = frame[1];
         Group& group = scene.groups[static_cast<std::size_t>(n % kFinishes)];
         for (int k = 0; k < kSegments; ++k) {
             const auto at = [&](int m) {
