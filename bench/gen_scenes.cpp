@@ -403,23 +403,45 @@ std::array<Vec, 2> frame_round(Vec normal) {
     return {side, cross(normal, side)};
 }
 
+// COUNT items on a square grid over the floor, `spacing` apart, seen from the front and
+// above, looking at height `look_y`, with `finishes` seeded random finishes as its groups.
+struct GridScene {
+    Scene scene;
+    long side = 1;
+    double spacing = 1, extent = 0;
+    // Item n's place on the grid, at height y.
+    Vec point(long n, double y) const {
+        return {static_cast<double>(n / side) * spacing - extent, y,
+                static_cast<double>(n % side) * spacing - extent};
+    }
+};
+
+GridScene grid_scene(long count, double spacing, double look_y, int size, Random& random,
+                     long finishes) {
+    GridScene grid;
+    grid.side = std::max(1L, std::lround(std::ceil(std::sqrt(static_cast<double>(count)))));
+    grid.spacing = spacing;
+    grid.extent = spacing * static_cast<double>(grid.side - 1) / 2;
+    grid.scene = lit_scene(
+        3, camera({0, grid.extent + 4, -1.3 * grid.extent - 5}, {0, look_y, 0}, 50, size),
+        {{0.5, 0.5, 0.55}, 0.2, 20, 0.7});
+    for (long g = 0; g < finishes; ++g) grid.scene.groups.push_back({random_finish(random), {}});
+    return grid;
+}
+
 // Chain-mail rings in the spirit of the SPD's "rings": COUNT rings on a square grid over the
 // floor, each a circle of twelve open cylinders with a sphere at every joint, tilted by a
 // seeded random angle so that neighbours interlock. Long thin overlapping boxes.
 Scene rings(long count, int size) {
-    const long side = std::max(1L, std::lround(std::ceil(std::sqrt(static_cast<double>(count)))));
-    const double spacing = 1.7, extent = spacing * static_cast<double>(side - 1) / 2;
-    Scene scene = lit_scene(3, camera({0, extent + 4, -1.3 * extent - 5}, {0, 0.5, 0}, 50, size),
-                            {{0.5, 0.5, 0.55}, 0.2, 20, 0.7});
     Random random(6);
     constexpr long kFinishes = 6;
-    for (long g = 0; g < kFinishes; ++g) scene.groups.push_back({random_finish(random), {}});
+    GridScene grid = grid_scene(count, 1.7, 0.5, size, random, kFinishes);
+    Scene& scene = grid.scene;
     constexpr int kSegments = 12;
     constexpr double kRadius = 1, kTube = 0.1;
     for (long n = 0; n < count; ++n) {
-        const long i = n / side, j = n % side;
-        const Vec centre{static_cast<double>(i) * spacing - extent, kRadius + 0.3,
-                         static_cast<double>(j) * spacing - extent};
+        const long i = n / grid.side, j = n % grid.side;
+        const Vec centre = grid.point(n, kRadius + 0.3);
         const double tilt = random.uniform(0.5, 1.1) * ((i + j) % 2 == 0 ? 1 : -1);
         const double turn = random.uniform(0, std::numbers::pi);
         const Vec normal{std::sin(tilt) * std::cos(turn), std::cos(tilt),
@@ -437,7 +459,7 @@ Scene rings(long count, int size) {
             group.cylinders.push_back({at(k), at(k + 1) - at(k), kTube});
         }
     }
-    return scene;
+    return std::move(grid.scene);
 }
 
 // A cubic lattice of COUNT nodes a side: a sphere at every node and an open cylinder along
@@ -473,19 +495,14 @@ Scene lattice(long count, int size) {
 // angles, each a slab whose two faces are concave polygons of 24 teeth (96 vertices) and
 // whose sides are 96 four-sided polygons. Large concave polygons with big, mostly empty boxes.
 Scene gears(long count, int size) {
-    const long side = std::max(1L, std::lround(std::ceil(std::sqrt(static_cast<double>(count)))));
-    const double spacing = 2.3, extent = spacing * static_cast<double>(side - 1) / 2;
-    Scene scene = lit_scene(3, camera({0, extent + 4, -1.3 * extent - 5}, {0, 0.8, 0}, 50, size),
-                            {{0.5, 0.5, 0.55}, 0.2, 20, 0.7});
     Random random(7);
     constexpr long kFinishes = 5;
-    for (long g = 0; g < kFinishes; ++g) scene.groups.push_back({random_finish(random), {}});
+    GridScene grid = grid_scene(count, 2.3, 0.8, size, random, kFinishes);
+    Scene& scene = grid.scene;
     constexpr int kTeeth = 24;
     constexpr double kOuter = 1, kInner = 0.82, kThickness = 0.2;
     for (long n = 0; n < count; ++n) {
-        const long i = n / side, j = n % side;
-        const Vec centre{static_cast<double>(i) * spacing - extent, kOuter + 0.1,
-                         static_cast<double>(j) * spacing - extent};
+        const Vec centre = grid.point(n, kOuter + 0.1);
         const double turn = random.uniform(0, std::numbers::pi);
         const double lean = random.uniform(-0.4, 0.4);
         // The gear's axis, lying nearly flat: the gear stands on its rim.
@@ -511,7 +528,7 @@ Scene gears(long count, int size) {
             group.polygons.push_back({a, b - a, front - back, {{0, 0}, {1, 0}, {1, 1}, {0, 1}}});
         }
     }
-    return scene;
+    return std::move(grid.scene);
 }
 
 // Vectors as rt writes them, "x y z", and as POV-Ray does, "<x, y, z>".
