@@ -66,6 +66,8 @@ using CrossFn = bool(const void* shape, const Ray& ray, Interval range, Crossing
 // Appends every crossing of a solid's boundary with t > t_min, in increasing t, and returns
 // whether the point at t_min (just past it) is inside the solid.
 using CollectFn = bool(const void* shape, const Ray& ray, double t_min, Crossings& out);
+// A flat primitive's corners (primitives/flat_corners.h).
+using CornersFn = std::vector<Vec3>(const void* shape);
 
 // What a primitive does. Each primitive's source file defines one, at its end, from
 // functions private to that file; the table in table.cpp gives it an ID and a name.
@@ -98,6 +100,10 @@ struct PrimitiveFunctions {
     // directions), where it is not the geometric one: a smooth mesh's blend of vertex
     // normals. nullptr (the usual case): the normal, which then does both jobs.
     NormalFn* shading_normal = nullptr;
+    // For a flat primitive that a fan of triangles from its first corner covers (polygon,
+    // triangle): its corners, for handing it to another library as triangles (bench/embree).
+    // nullptr: not such a primitive.
+    CornersFn* corners = nullptr;
 };
 
 // One row of the table: the scene format's ID, the name messages use, and what it does.

@@ -13,13 +13,7 @@ namespace rt {
 // first corner covers every point the primitive's own test hits, whatever the outline
 // (concave, or crossing itself): such a point has a winding number other than zero, and the
 // fan's triangles, counted with their orientation, add up to it.
+// From the table's corners column (PrimitiveFunctions::corners).
 std::vector<Vec3> flat_corners(const Shape& shape);
-
-namespace polygon {
-std::vector<Vec3> corners(const void* shape);
-}
-namespace triangle {
-std::vector<Vec3> corners(const void* shape);
-}
 
 }  // namespace rt

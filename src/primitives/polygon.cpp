@@ -6,7 +6,6 @@
 #include <string>
 #include <vector>
 
-#include "primitives/flat_corners.h"
 #include "primitives/planar.h"
 #include "rt/primitive.h"
 #include "rt/reader.h"
@@ -139,8 +138,6 @@ Vec3 normal(const void* shape, const Vec3&, const Hit&) {
 
 Bounds bounds(const void* shape) { return static_cast<const Polygon*>(shape)->box; }
 
-}  // namespace
-
 std::vector<Vec3> corners(const void* shape) {
     const auto& p = *static_cast<const Polygon*>(shape);
     const int drop = 3 - p.u_axis - p.v_axis;
@@ -150,15 +147,17 @@ std::vector<Vec3> corners(const void* shape) {
         double v[3];
         v[p.u_axis] = q.u;
         v[p.v_axis] = q.v;
-        v[drop] = (p.plane.offset - p.plane.normal[p.u_axis] * q.u -
-                   p.plane.normal[p.v_axis] * q.v) /
-                  p.plane.normal[drop];
+        v[drop] =
+            (p.plane.offset - p.plane.normal[p.u_axis] * q.u - p.plane.normal[p.v_axis] * q.v) /
+            p.plane.normal[drop];
         out.push_back({v[0], v[1], v[2]});
     }
     return out;
 }
 
+}  // namespace
+
 extern const PrimitiveFunctions functions{
-    .read = read, .intersect = intersect, .normal = normal, .bounds = bounds};
+    .read = read, .intersect = intersect, .normal = normal, .bounds = bounds, .corners = corners};
 
 }  // namespace rt::polygon

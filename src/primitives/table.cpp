@@ -111,9 +111,8 @@ bool Shape::collect(const Ray& ray, double t_min, Crossings& out) const {
 }
 
 std::vector<Vec3> flat_corners(const Shape& shape) {
-    if (shape.type->id == 11) return polygon::corners(shape.data.get());
-    if (shape.type->id == 5) return triangle::corners(shape.data.get());
-    return {};
+    if (shape.functions->corners == nullptr) return {};
+    return shape.functions->corners(shape.data.get());
 }
 
 }  // namespace rt

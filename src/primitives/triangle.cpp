@@ -3,7 +3,6 @@
 // meet it by the watertight test that the mesh uses too, so triangles written one by one
 // that share an edge (the same two vertices, to the last bit) leave no gap along it, and a
 // mesh and the same triangles written separately are hit at the same distances.
-#include "primitives/flat_corners.h"
 #include "primitives/planar.h"
 #include "primitives/watertight.h"
 #include "rt/primitive.h"
@@ -54,14 +53,14 @@ Vec3 normal(const void* shape, const Vec3&, const Hit&) {
 
 Bounds bounds(const void* shape) { return static_cast<const Triangle*>(shape)->box; }
 
-}  // namespace
-
 std::vector<Vec3> corners(const void* shape) {
     const auto& t = *static_cast<const Triangle*>(shape);
     return {t.sorted.begin(), t.sorted.end()};
 }
 
+}  // namespace
+
 extern const PrimitiveFunctions functions{
-    .read = read, .intersect = intersect, .normal = normal, .bounds = bounds};
+    .read = read, .intersect = intersect, .normal = normal, .bounds = bounds, .corners = corners};
 
 }  // namespace rt::triangle
