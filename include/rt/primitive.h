@@ -68,6 +68,12 @@ using CrossFn = bool(const void* shape, const Ray& ray, Interval range, Crossing
 using CollectFn = bool(const void* shape, const Ray& ray, double t_min, Crossings& out);
 // A flat primitive's corners (primitives/flat_corners.h).
 using CornersFn = std::vector<Vec3>(const void* shape);
+// A sphere's centre and squared radius (primitives/sphere_test.h).
+struct SphereParameters {
+    Vec3 centre;
+    double radius_squared;
+};
+using SphereFn = SphereParameters(const void* shape);
 
 // What a primitive does. Each primitive's source file defines one, at its end, from
 // functions private to that file; the table in table.cpp gives it an ID and a name.
@@ -104,6 +110,10 @@ struct PrimitiveFunctions {
     // triangle): its corners, for handing it to another library as triangles (bench/embree).
     // nullptr: not such a primitive.
     CornersFn* corners = nullptr;
+    // For a primitive that is a sphere and nothing else (1): its centre and squared radius,
+    // which the object hierarchy copies into its leaves to test it inline, without a call
+    // (primitives/sphere_test.h, the same code as its intersect). nullptr: not a sphere.
+    SphereFn* sphere = nullptr;
 };
 
 // One row of the table: the scene format's ID, the name messages use, and what it does.

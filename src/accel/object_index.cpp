@@ -1,9 +1,11 @@
 #include "accel/object_index.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
+#include "primitives/sphere_test.h"
 #include "rt/scene.h"
 
 namespace rt {
@@ -33,7 +35,7 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
     for (std::uint32_t i = 0; i < objects.size(); ++i) {
         const Shape& shape = objects[i].shape;
         const Entry entry{shape.intersect_function(), shape.any_hit_function(), shape.data.get(),
-                          i};
+                          i, shape.functions->sphere != nullptr};
         const Bounds box = shape.bounds();
         if (finite_box(box)) {
             boxes.push_back(box);
@@ -47,7 +49,30 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
     entries_.reserve(objects.size());
     for (const std::uint32_t i : bvh_.take_order()) entries_.push_back(bounded[i]);
     bounded_count_ = entries_.size();
+    if (std::any_of(entries_.begin(), entries_.end(), [](const Entry& e) { return e.sphere; }))
+        spheres_.resize(bounded_count_);
+    for (std::size_t i = 0; i < bounded_count_; ++i)
+        if (entries_[i].sphere)
+            spheres_[i] = objects[entries_[i].object].shape.functions->sphere(entries_[i].data);
     entries_.insert(entries_.end(), unbounded.begin(), unbounded.end());
+}
+
+bool ObjectIndex::hits(std::uint32_t i, const Ray& ray, Interval range, Hit& hit) const {
+    const Entry& e = entries_[i];
+    if (!e.sphere) return e.intersect(e.data, ray, range, hit);
+    // As sphere's intersect does.
+    double t = 0;
+    if (!sphere_crossing(spheres_[i], ray, range, t)) return false;
+    hit.t = t;
+    hit.part = 0;
+    return true;
+}
+
+bool ObjectIndex::blocks(std::uint32_t i, const Ray& ray, Interval range, Hit& scratch) const {
+    const Entry& e = entries_[i];
+    if (!e.sphere) return e.intersect_any(e.data, ray, range, scratch);
+    double t = 0;
+    return sphere_crossing(spheres_[i], ray, range, t);
 }
 
 bool ObjectIndex::closest(const Ray& ray, Interval range, Found& found,
@@ -56,7 +81,7 @@ bool ObjectIndex::closest(const Ray& ray, Interval range, Found& found,
     std::uint32_t best_object = kNone;
     std::uint64_t uncounted = 0;
     std::uint64_t& asked = tests != nullptr ? *tests : uncounted;
-    auto test = [&](const Entry& e) {
+    auto test = [&](std::uint32_t i) {
         ++asked;
         // The linear scan asks each object with its own best so far, and an intersect's
         // answer near t_max can depend on t_max by a rounding (an affine scales it), so each
@@ -64,15 +89,16 @@ bool ObjectIndex::closest(const Ray& ray, Interval range, Found& found,
         // and at the same distance the object earlier in the file.
         const double limit = best_object == kNone ? best : best + kTieSlack * best;
         Hit hit;
-        if (!e.intersect(e.data, ray, {range.t_min, limit}, hit)) return;
-        if (!(hit.t < best || (hit.t == best && e.object < best_object))) return;
+        if (!hits(i, ray, {range.t_min, limit}, hit)) return;
+        const std::uint32_t object = entries_[i].object;
+        if (!(hit.t < best || (hit.t == best && object < best_object))) return;
         best = hit.t;
-        best_object = e.object;
-        found = {e.object, hit};
+        best_object = object;
+        found = {object, hit};
     };
     // The unbounded objects first: a floor under everything prunes much of the tree.
-    for (std::size_t i = bounded_count_; i < entries_.size(); ++i) test(entries_[i]);
-    bvh_.closest(ray, range.t_min, best, [&](std::uint32_t i) { test(entries_[i]); });
+    for (auto i = static_cast<std::uint32_t>(bounded_count_); i < entries_.size(); ++i) test(i);
+    bvh_.closest(ray, range.t_min, best, test);
     return best_object != kNone;
 }
 
@@ -83,20 +109,20 @@ bool ObjectIndex::any(const Ray& ray, Interval range, Blocker* last, std::uint64
     // The last blocker is tried first; if it does not block, it is not tried again below
     // (for a mesh that would be a second search of all its triangles).
     std::uint32_t tried = kNone;
-    auto blocks = [&](std::uint32_t i) {
+    auto stops = [&](std::uint32_t i) {
         if (i == tried) return false;
         ++asked;
-        if (!entries_[i].intersect_any(entries_[i].data, ray, range, hit)) return false;
+        if (!blocks(i, ray, range, hit)) return false;
         if (last != nullptr) last->entry = i;
         return true;
     };
     if (last != nullptr && last->entry < entries_.size()) {
-        if (blocks(last->entry)) return true;
+        if (stops(last->entry)) return true;
         tried = last->entry;
     }
     for (auto i = static_cast<std::uint32_t>(bounded_count_); i < entries_.size(); ++i)
-        if (blocks(i)) return true;
-    return bvh_.any(ray, range.t_min, range.t_max, blocks);
+        if (stops(i)) return true;
+    return bvh_.any(ray, range.t_min, range.t_max, stops);
 }
 
 void Scene::build_index(int threads) {

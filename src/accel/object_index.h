@@ -53,11 +53,21 @@ class ObjectIndex {
         IntersectFn* intersect_any;  // for shadow rays (Shape::any_hit_function)
         const void* data;
         std::uint32_t object;
+        // A sphere, tested inline from spheres_ (its table row's sphere column) instead of
+        // through intersect: no call, and no load of its parameters from elsewhere.
+        bool sphere;
     };
+
+    // Whether entry i is hit in range (hit as intersect leaves it).
+    bool hits(std::uint32_t i, const Ray& ray, Interval range, Hit& hit) const;
+    bool blocks(std::uint32_t i, const Ray& ray, Interval range, Hit& scratch) const;
 
     Bvh bvh_;
     // The bounded objects in leaf order, then the unbounded ones in file order.
     std::vector<Entry> entries_;
+    // Beside each bounded entry in leaf order, its sphere's parameters where it is a sphere
+    // (unused otherwise); empty in a scene without spheres.
+    std::vector<SphereParameters> spheres_;
     std::size_t bounded_count_ = 0;
     std::size_t object_count_ = 0;
 };

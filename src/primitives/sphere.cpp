@@ -1,6 +1,7 @@
 // Sphere (ID 1): radius; centre. The points x with |x - c| = r (section 2.2 of the original).
 #include <cmath>
 
+#include "primitives/sphere_test.h"
 #include "rt/primitive.h"
 #include "rt/reader.h"
 
@@ -22,25 +23,16 @@ ShapeData read(SceneReader& reader) {
 
 bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
     const auto& s = *static_cast<const Sphere*>(shape);
-    // With a unit direction the quadratic is t^2 + 2bt + c = 0.
-    const Vec3 oc = ray.origin - s.centre;
-    const double b = dot(oc, ray.direction);
-    // r^2 - |oc - b d|^2 is the discriminant without the cancellation of b^2 - c when the
-    // sphere is far away and small.
-    const Vec3 perpendicular = oc - b * ray.direction;
-    const double discriminant = s.radius_squared - length_squared(perpendicular);
-    if (discriminant < 0) return false;
-    const double c = length_squared(oc) - s.radius_squared;
-    // The root of larger magnitude first, then the other as c / q: no cancellation.
-    const double q = -b - std::copysign(std::sqrt(discriminant), b);
-    double near = q;
-    double far = q != 0 ? c / q : 0;
-    if (near > far) std::swap(near, far);
-    const double t = range.contains(near) ? near : far;
-    if (!range.contains(t)) return false;
+    double t = 0;
+    if (!sphere_crossing({s.centre, s.radius_squared}, ray, range, t)) return false;
     hit.t = t;
     hit.part = 0;
     return true;
+}
+
+SphereParameters parameters(const void* shape) {
+    const auto& s = *static_cast<const Sphere*>(shape);
+    return {s.centre, s.radius_squared};
 }
 
 Vec3 normal(const void* shape, const Vec3& point, const Hit&) {
@@ -62,6 +54,11 @@ bool inside(const void* shape, const Vec3& point) {
 }  // namespace
 
 extern const PrimitiveFunctions functions{
-    .read = read, .intersect = intersect, .normal = normal, .bounds = bounds, .inside = inside};
+    .read = read,
+    .intersect = intersect,
+    .normal = normal,
+    .bounds = bounds,
+    .inside = inside,
+    .sphere = parameters};
 
 }  // namespace rt::sphere
