@@ -63,7 +63,11 @@ struct RenderStats {
 // shared read-only. With options.accelerate (the default) the scene's
 // index must have been built (read_scene does), or construction throws std::logic_error;
 // with options.queries it is not used, nor needed.
-class Tracer {
+// Aligned to a cache line, and its per-light blockers kept a line away from the ends of their
+// allocation: the tracers of a render's threads lie side by side, each writes its counters
+// and blockers on almost every ray, and a line two threads write would pass between their
+// cores on every write (false sharing).
+class alignas(64) Tracer {
   public:
     Tracer(const Scene& scene, const RenderOptions& options);
 
@@ -103,8 +107,11 @@ class Tracer {
     RenderOptions options_;     // a copy: small, and safe when built from a temporary
     RenderStats stats_;
     Spectrum escaped_;  // what a traced ray that hits nothing brings back
-    // Per light, the object that last blocked a shadow ray toward it.
+    // Per light, the object that last blocked a shadow ray toward it: lights() of them,
+    // from kBlockerPadding on.
+    static constexpr std::size_t kBlockerPadding = 64 / sizeof(LastBlocker);
     std::vector<LastBlocker> last_blockers_;
+    LastBlocker& last_blocker(std::size_t light) { return last_blockers_[kBlockerPadding + light]; }
 };
 
 }  // namespace rt

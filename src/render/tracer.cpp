@@ -74,7 +74,7 @@ Tracer::Tracer(const Scene& scene, const RenderOptions& options)
       index_(scene.index.get()),
       options_(options),
       escaped_(scene.background.value_or(scene.ambient)),
-      last_blockers_(scene.lights.size()) {
+      last_blockers_(kBlockerPadding + scene.lights.size() + kBlockerPadding) {
     // A backend replaces the hierarchy: it is asked on the path of the linear scan, so that
     // rt's own path (the hierarchy's) does not test for it on every ray.
     if (options_.queries != nullptr) options_.accelerate = false;
@@ -135,7 +135,7 @@ Spectrum Tracer::direct_light(const Vec3& point, const Vec3& facing_normal, cons
             // vector, as for every primitive but the smooth mesh, the two tests are one.)
             const double lambert = dot(shading, s.direction);
             if (!(facing > 0) || !(lambert > 0) || s.intensity.is_black()) continue;
-            if (options_.shadows && blocked({point, s.direction}, s.distance, &last_blockers_[l]))
+            if (options_.shadows && blocked({point, s.direction}, s.distance, &last_blocker(l)))
                 continue;
             Spectrum term(0.0);
             if (options_.diffuse) term += m.colour * (m.kd * lambert);
