@@ -139,6 +139,75 @@ TEST(random_rays_on_random_stars_match_fan_test) {
     CHECK(counts.skipped < 100);
 }
 
+namespace {
+
+// The even-odd count over every edge, written here as the contract's rule with the code's
+// half-open edges and crossing formula, so that the decision must agree to the bit.
+bool even_odd_every_edge(const std::vector<Point2>& outline, Point2 p) {
+    bool inside = false;
+    for (std::size_t i = 0, j = outline.size() - 1; i < outline.size(); j = i++) {
+        const Point2 a = outline[i], b = outline[j];
+        if ((a.y > p.y) == (b.y > p.y)) continue;
+        if (p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y)) inside = !inside;
+    }
+    return inside;
+}
+
+// Outlines with many vertices, which rt files by bands of v: a gear (concave, teeth), a
+// random walk (self-intersecting), a comb whose every edge spans the whole height (so fewer
+// bands are made), and a circle of 300 points.
+std::vector<std::vector<Point2>> many_sided_outlines(Random& random) {
+    std::vector<std::vector<Point2>> outlines;
+    std::vector<Point2> gear;
+    for (int i = 0; i < 96; ++i) {
+        const double r = (i / 2) % 2 ? 1.0 : 1.25;
+        const double angle = 2 * kPi * i / 96;
+        gear.push_back({r * std::cos(angle), r * std::sin(angle)});
+    }
+    outlines.push_back(gear);
+    std::vector<Point2> walk;
+    for (int i = 0; i < 200; ++i) walk.push_back({random.uniform(-1, 1), random.uniform(-1, 1)});
+    outlines.push_back(walk);
+    std::vector<Point2> comb;
+    for (int i = 0; i < 200; ++i) comb.push_back({i * 0.01, i % 2 ? 1.0 : 0.0});
+    outlines.push_back(comb);
+    std::vector<Point2> circle;
+    for (int i = 0; i < 300; ++i)
+        circle.push_back({std::cos(2 * kPi * i / 300), 3 + std::sin(2 * kPi * i / 300)});
+    outlines.push_back(circle);
+    // Sixteen vertices, the fewest that are filed.
+    outlines.push_back(star_points(8, 2, 0.5, 0.1));
+    return outlines;
+}
+
+}  // namespace
+
+TEST(many_sided_outlines_decide_as_the_count_over_every_edge) {
+    Random random(1101);
+    for (const std::vector<Point2>& outline : many_sided_outlines(random)) {
+        const Shape s = flat_polygon(outline);
+        double lo_x = outline[0].x, hi_x = lo_x, lo_y = outline[0].y, hi_y = lo_y;
+        for (const Point2& q : outline) {
+            lo_x = std::fmin(lo_x, q.x), hi_x = std::fmax(hi_x, q.x);
+            lo_y = std::fmin(lo_y, q.y), hi_y = std::fmax(hi_y, q.y);
+        }
+        int differ = 0, inside = 0;
+        for (int r = 0; r < 20000; ++r) {
+            Point2 p{random.uniform(lo_x - 0.1, hi_x + 0.1), random.uniform(lo_y - 0.1, hi_y + 0.1)};
+            // At a vertex's height (the half-open rule), at the extremes, on a vertex.
+            const Point2& q = outline[random.next() % outline.size()];
+            if (r % 4 == 1) p.y = q.y;
+            if (r % 97 == 0) p.y = r % 2 ? lo_y : hi_y;
+            if (r % 101 == 0) p = q;
+            const bool expected = even_odd_every_edge(outline, p);
+            inside += expected ? 1 : 0;
+            if (hits_at(s, p.x, p.y) != expected) ++differ;
+        }
+        CHECK_EQ(differ, 0);
+        CHECK(inside > 1000);
+    }
+}
+
 TEST(even_odd_rule_on_a_pentagram_drawn_with_five_vertices) {
     // The outline crosses itself; by the even-odd rule the five tips are inside and the
     // pentagon in the middle is outside.

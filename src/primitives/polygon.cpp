@@ -3,7 +3,9 @@
 // crosses the boundary an odd number of times. Self-intersecting outlines are accepted and
 // the same rule defines them (the middle of a pentagram drawn with five vertices is outside).
 #include <cmath>
+#include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "primitives/planar.h"
@@ -15,9 +17,14 @@ namespace rt::polygon {
 namespace {
 
 // The most vertices a polygon may have. Vertices are stored as they are read, so this is a
-// sanity limit rather than an allocation size: each ray tests every edge, and a polygon
-// this large belongs in a mesh.
+// sanity limit rather than an allocation size.
 constexpr long kMaxVertices = 1'000'000;
+
+// From this many vertices on, a polygon files its edges in bands (EdgeBands).
+constexpr std::size_t kBandedFrom = 16;
+// The bands' lists hold at most this many entries per edge in all; fewer bands are made
+// where the edges span more of them (a star whose every edge crosses the middle).
+constexpr std::size_t kBandEntriesPerEdge = 8;
 
 // A vertex may lie off the polygon's plane by this fraction of the polygon's size (the
 // diagonal of its bounding box). That admits vertices written with six significant digits
@@ -32,10 +39,32 @@ struct Point2 {
     double u, v;
 };
 
+// The edges of a many-sided outline filed by bands of v, so that a point's crossing count
+// asks only the edges whose v-range reaches its band instead of all of them. The band of a
+// v is floor((v - origin) * scale), clamped to the last band: every step is monotonic in v,
+// so an edge whose ends span [lo, hi] is filed in every band that a v between them can
+// fall in, however the steps round. The edges a point counts are then among those of its
+// band, and the toggles of the even-odd count commute, so the answer is exactly the one
+// every edge gives. Empty (no bands) for a polygon with few vertices.
+struct EdgeBands {
+    double origin = 0, scale = 0;
+    std::vector<std::uint32_t> first;  // per band, where its edges start in `edges`; and the end
+    std::vector<std::uint32_t> edges;  // edge i runs from outline[i] to the vertex before it
+
+    std::size_t bands() const { return first.empty() ? 0 : first.size() - 1; }
+    std::size_t band_of(double v) const {
+        const double x = (v - origin) * scale;  // >= 0 for v >= origin
+        const std::size_t last = bands() - 1;
+        return x < static_cast<double>(last) ? static_cast<std::size_t>(x) : last;
+    }
+};
+
 struct Polygon {
     Plane plane;
     int u_axis, v_axis;  // the two world axes the polygon is projected onto
     std::vector<Point2> outline;
+    double v_min = 0, v_max = 0;  // the outline's extent in v
+    EdgeBands bands;
     Bounds box;
 };
 
@@ -47,19 +76,70 @@ int largest_axis(const Vec3& v) {
 
 Point2 project(const Vec3& p, int u_axis, int v_axis) { return {p[u_axis], p[v_axis]}; }
 
-// The even-odd rule: count the edges that a ray from p along +u crosses. Each edge is taken
-// as half-open in v, so a ray through a vertex counts the two edges there once between them.
-bool even_odd_inside(const std::vector<Point2>& outline, Point2 p) {
-    bool inside = false;
+// Whether a ray from p along +u crosses the edge from a to b. Each edge is taken as
+// half-open in v, so a ray through a vertex counts the two edges there once between them.
+bool crosses(const Point2& a, const Point2& b, Point2 p) {
+    if ((a.v > p.v) == (b.v > p.v)) return false;
+    const double crossing_u = a.u + (p.v - a.v) * (b.u - a.u) / (b.v - a.v);
+    return p.u < crossing_u;
+}
+
+// The even-odd rule: whether an odd number of edges cross the ray from p along +u.
+bool even_odd_inside(const Polygon& polygon, Point2 p) {
+    const std::vector<Point2>& outline = polygon.outline;
     const std::size_t n = outline.size();
-    for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
-        const Point2& a = outline[i];
-        const Point2& b = outline[j];
-        if ((a.v > p.v) == (b.v > p.v)) continue;
-        const double crossing_u = a.u + (p.v - a.v) * (b.u - a.u) / (b.v - a.v);
-        if (p.u < crossing_u) inside = !inside;
+    bool inside = false;
+    const EdgeBands& bands = polygon.bands;
+    if (bands.bands() == 0) {
+        for (std::size_t i = 0, j = n - 1; i < n; j = i++)
+            if (crosses(outline[i], outline[j], p)) inside = !inside;
+        return inside;
+    }
+    // No edge reaches a v outside the outline's (nor a NaN).
+    if (!(p.v >= polygon.v_min && p.v <= polygon.v_max)) return false;
+    const std::size_t band = bands.band_of(p.v);
+    for (std::uint32_t k = bands.first[band]; k < bands.first[band + 1]; ++k) {
+        const std::uint32_t i = bands.edges[k];
+        if (crosses(outline[i], outline[i == 0 ? n - 1 : i - 1], p)) inside = !inside;
     }
     return inside;
+}
+
+// Files the edges of a polygon with many vertices in bands: about one band per edge, fewer
+// where that would file an edge in more than kBandEntriesPerEdge bands on average.
+void file_edges(Polygon& polygon) {
+    const std::vector<Point2>& outline = polygon.outline;
+    const std::size_t n = outline.size();
+    const double extent = polygon.v_max - polygon.v_min;
+    if (n < kBandedFrom || !(extent > 0) || !std::isfinite(extent)) return;
+    EdgeBands bands;
+    bands.origin = polygon.v_min;
+    auto span = [&](std::size_t i) {
+        const double a = outline[i].v, b = outline[i == 0 ? n - 1 : i - 1].v;
+        return std::pair{bands.band_of(std::fmin(a, b)), bands.band_of(std::fmax(a, b))};
+    };
+    for (std::size_t count = n; count >= 2; count /= 2) {
+        bands.scale = static_cast<double>(count) / extent;
+        bands.first.assign(count + 1, 0);
+        std::size_t entries = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+            const auto [lo, hi] = span(i);
+            entries += hi - lo + 1;
+            for (std::size_t b = lo; b <= hi; ++b) ++bands.first[b + 1];
+            if (entries > kBandEntriesPerEdge * n) break;
+        }
+        if (!std::isfinite(bands.scale) || entries > kBandEntriesPerEdge * n) continue;
+        for (std::size_t b = 0; b < count; ++b) bands.first[b + 1] += bands.first[b];
+        bands.edges.resize(entries);
+        std::vector<std::uint32_t> next(bands.first.begin(), bands.first.end() - 1);
+        for (std::size_t i = 0; i < n; ++i) {
+            const auto [lo, hi] = span(i);
+            for (std::size_t b = lo; b <= hi; ++b)
+                bands.edges[next[b]++] = static_cast<std::uint32_t>(i);
+        }
+        polygon.bands = std::move(bands);
+        return;
+    }
 }
 
 ShapeData read(SceneReader& reader) {
@@ -117,17 +197,23 @@ ShapeData read(SceneReader& reader) {
 
     // Project onto the two axes the plane faces least, where the outline is largest.
     const int drop = largest_axis({std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)});
-    Polygon polygon{{n, offset}, (drop + 1) % 3, (drop + 2) % 3, {}, box};
+    Polygon polygon{{n, offset}, (drop + 1) % 3, (drop + 2) % 3, {}, 0, 0, {}, box};
     polygon.outline.reserve(vertices.size());
     for (const Vec3& v : vertices)
         polygon.outline.push_back(project(v, polygon.u_axis, polygon.v_axis));
+    polygon.v_min = polygon.v_max = polygon.outline[0].v;
+    for (const Point2& q : polygon.outline) {
+        polygon.v_min = std::fmin(polygon.v_min, q.v);
+        polygon.v_max = std::fmax(polygon.v_max, q.v);
+    }
+    file_edges(polygon);
     return std::make_shared<const Polygon>(std::move(polygon));
 }
 
 bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
     const auto& p = *static_cast<const Polygon*>(shape);
     const auto t = p.plane.distance(ray, range);
-    if (!t || !even_odd_inside(p.outline, project(ray.at(*t), p.u_axis, p.v_axis))) return false;
+    if (!t || !even_odd_inside(p, project(ray.at(*t), p.u_axis, p.v_axis))) return false;
     hit = {*t, 0};
     return true;
 }
