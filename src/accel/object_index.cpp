@@ -34,8 +34,8 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
     bounded.reserve(objects.size());
     for (std::uint32_t i = 0; i < objects.size(); ++i) {
         const Shape& shape = objects[i].shape;
-        const Entry entry{shape.intersect_function(), shape.any_hit_function(), shape.data.get(),
-                          i, shape.functions->sphere != nullptr};
+        const Entry entry{shape.intersect_function(), shape.any_hit_function(), shape.data.get(), i,
+                          shape.functions->sphere != nullptr};
         const Bounds box = shape.bounds();
         if (finite_box(box)) {
             boxes.push_back(box);
@@ -59,13 +59,8 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
 
 bool ObjectIndex::hits(std::uint32_t i, const Ray& ray, Interval range, Hit& hit) const {
     const Entry& e = entries_[i];
-    if (!e.sphere) return e.intersect(e.data, ray, range, hit);
-    // As sphere's intersect does.
-    double t = 0;
-    if (!sphere_crossing(spheres_[i], ray, range, t)) return false;
-    hit.t = t;
-    hit.part = 0;
-    return true;
+    return e.sphere ? sphere_hit(spheres_[i], ray, range, hit)
+                    : e.intersect(e.data, ray, range, hit);
 }
 
 bool ObjectIndex::blocks(std::uint32_t i, const Ray& ray, Interval range, Hit& scratch) const {

@@ -47,7 +47,8 @@ struct Point2 {
 // band, and the toggles of the even-odd count commute, so the answer is exactly the one
 // every edge gives. Empty (no bands) for a polygon with few vertices.
 struct EdgeBands {
-    double origin = 0, scale = 0;
+    double origin = 0, top = 0;  // the outline's extent in v
+    double scale = 0;
     std::vector<std::uint32_t> first;  // per band, where its edges start in `edges`; and the end
     std::vector<std::uint32_t> edges;  // edge i runs from outline[i] to the vertex before it
 
@@ -63,7 +64,6 @@ struct Polygon {
     Plane plane;
     int u_axis, v_axis;  // the two world axes the polygon is projected onto
     std::vector<Point2> outline;
-    double v_min = 0, v_max = 0;  // the outline's extent in v
     EdgeBands bands;
     Bounds box;
 };
@@ -96,7 +96,7 @@ bool even_odd_inside(const Polygon& polygon, Point2 p) {
         return inside;
     }
     // No edge reaches a v outside the outline's (nor a NaN).
-    if (!(p.v >= polygon.v_min && p.v <= polygon.v_max)) return false;
+    if (!(p.v >= bands.origin && p.v <= bands.top)) return false;
     const std::size_t band = bands.band_of(p.v);
     for (std::uint32_t k = bands.first[band]; k < bands.first[band + 1]; ++k) {
         const std::uint32_t i = bands.edges[k];
@@ -110,10 +110,15 @@ bool even_odd_inside(const Polygon& polygon, Point2 p) {
 void file_edges(Polygon& polygon) {
     const std::vector<Point2>& outline = polygon.outline;
     const std::size_t n = outline.size();
-    const double extent = polygon.v_max - polygon.v_min;
-    if (n < kBandedFrom || !(extent > 0) || !std::isfinite(extent)) return;
+    if (n < kBandedFrom) return;
     EdgeBands bands;
-    bands.origin = polygon.v_min;
+    bands.origin = bands.top = outline[0].v;
+    for (const Point2& q : outline) {
+        bands.origin = std::fmin(bands.origin, q.v);
+        bands.top = std::fmax(bands.top, q.v);
+    }
+    const double extent = bands.top - bands.origin;
+    if (!(extent > 0) || !std::isfinite(extent)) return;
     auto span = [&](std::size_t i) {
         const double a = outline[i].v, b = outline[i == 0 ? n - 1 : i - 1].v;
         return std::pair{bands.band_of(std::fmin(a, b)), bands.band_of(std::fmax(a, b))};
@@ -197,15 +202,10 @@ ShapeData read(SceneReader& reader) {
 
     // Project onto the two axes the plane faces least, where the outline is largest.
     const int drop = largest_axis({std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)});
-    Polygon polygon{{n, offset}, (drop + 1) % 3, (drop + 2) % 3, {}, 0, 0, {}, box};
+    Polygon polygon{{n, offset}, (drop + 1) % 3, (drop + 2) % 3, {}, {}, box};
     polygon.outline.reserve(vertices.size());
     for (const Vec3& v : vertices)
         polygon.outline.push_back(project(v, polygon.u_axis, polygon.v_axis));
-    polygon.v_min = polygon.v_max = polygon.outline[0].v;
-    for (const Point2& q : polygon.outline) {
-        polygon.v_min = std::fmin(polygon.v_min, q.v);
-        polygon.v_max = std::fmax(polygon.v_max, q.v);
-    }
     file_edges(polygon);
     return std::make_shared<const Polygon>(std::move(polygon));
 }

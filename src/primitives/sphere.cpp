@@ -11,54 +11,44 @@ namespace {
 
 struct Sphere {
     double radius;
-    double radius_squared;  // precomputed, as the original suggests
-    Vec3 centre;
+    SphereParameters test;  // centre and r^2 (precomputed, as the original suggests)
 };
 
 ShapeData read(SceneReader& reader) {
     const double radius = reader.positive("sphere radius");
     const Vec3 centre = reader.vec3("sphere centre");
-    return std::make_shared<const Sphere>(Sphere{radius, radius * radius, centre});
+    return std::make_shared<const Sphere>(Sphere{radius, {centre, radius * radius}});
 }
 
 bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
-    const auto& s = *static_cast<const Sphere*>(shape);
-    double t = 0;
-    if (!sphere_crossing({s.centre, s.radius_squared}, ray, range, t)) return false;
-    hit.t = t;
-    hit.part = 0;
-    return true;
+    return sphere_hit(static_cast<const Sphere*>(shape)->test, ray, range, hit);
 }
 
-SphereParameters parameters(const void* shape) {
-    const auto& s = *static_cast<const Sphere*>(shape);
-    return {s.centre, s.radius_squared};
-}
+SphereParameters parameters(const void* shape) { return static_cast<const Sphere*>(shape)->test; }
 
 Vec3 normal(const void* shape, const Vec3& point, const Hit&) {
     const auto& s = *static_cast<const Sphere*>(shape);
-    return normalized(point - s.centre);
+    return normalized(point - s.test.centre);
 }
 
 Bounds bounds(const void* shape) {
     const auto& s = *static_cast<const Sphere*>(shape);
     const Vec3 r{s.radius, s.radius, s.radius};
-    return {s.centre - r, s.centre + r};
+    return {s.test.centre - r, s.test.centre + r};
 }
 
 bool inside(const void* shape, const Vec3& point) {
     const auto& s = *static_cast<const Sphere*>(shape);
-    return length_squared(point - s.centre) < s.radius_squared;
+    return length_squared(point - s.test.centre) < s.test.radius_squared;
 }
 
 }  // namespace
 
-extern const PrimitiveFunctions functions{
-    .read = read,
-    .intersect = intersect,
-    .normal = normal,
-    .bounds = bounds,
-    .inside = inside,
-    .sphere = parameters};
+extern const PrimitiveFunctions functions{.read = read,
+                                          .intersect = intersect,
+                                          .normal = normal,
+                                          .bounds = bounds,
+                                          .inside = inside,
+                                          .sphere = parameters};
 
 }  // namespace rt::sphere

@@ -12,8 +12,7 @@ namespace rt {
 
 // The distance of the nearer of the ray's crossings with the sphere in range (the farther
 // where the nearer is out of it), or false when neither is in range.
-inline bool sphere_crossing(const SphereParameters& s, const Ray& ray, Interval range,
-                            double& t) {
+inline bool sphere_crossing(const SphereParameters& s, const Ray& ray, Interval range, double& t) {
     // With a unit direction the quadratic is t^2 + 2bt + c = 0.
     const Vec3 oc = ray.origin - s.centre;
     const double b = dot(oc, ray.direction);
@@ -30,6 +29,15 @@ inline bool sphere_crossing(const SphereParameters& s, const Ray& ray, Interval 
     if (near > far) std::swap(near, far);
     t = range.contains(near) ? near : far;
     return range.contains(t);
+}
+
+// The sphere's intersect (PrimitiveFunctions::intersect), for the table and the leaves alike.
+inline bool sphere_hit(const SphereParameters& s, const Ray& ray, Interval range, Hit& hit) {
+    double t = 0;
+    if (!sphere_crossing(s, ray, range, t)) return false;
+    hit.t = t;
+    hit.part = 0;
+    return true;
 }
 
 }  // namespace rt
