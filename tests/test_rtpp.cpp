@@ -395,6 +395,149 @@ TEST(limits_stop_runaway_input) {
     }
 }
 
+// The work a program does is bounded by counting it, not its loops alone: a loop within the
+// iteration limit whose body is long could otherwise run for minutes. Each statement run,
+// expression evaluated and field copied from a named object is one step; the counts below
+// are worked out by hand from those rules.
+TEST(steps_count_statements_expressions_and_copied_fields) {
+    rtpp::CompileOptions small;
+    // let (1), + (2), 1 (3), 2 (4): four steps, then the missing camera.
+    small.limits.steps = 4;
+    CHECK_CONTAINS(error_of("let a = 1 + 2", small), "t.rts:1:14: no camera in the scene");
+    small.limits.steps = 3;
+    CHECK_CONTAINS(error_of("let a = 1 + 2", small),
+                   "t.rts:1:13: more than 3 evaluation steps (each expression evaluated, each "
+                   "statement run and each field copied from a named object counts one)");
+    // for (1), its bounds (2, 3), then per pass let, *, i, 2 (4 each): 43 for ten passes; the
+    // 43rd is the last pass's 2, and the note names that pass.
+    const std::string loop = "for i = 1 to 10 { let a = i * 2 }";
+    small.limits.steps = 43;
+    CHECK_CONTAINS(error_of(loop, small), "no camera in the scene");
+    small.limits.steps = 42;
+    const std::string message = error_of(loop, small);
+    CHECK_CONTAINS(message, "t.rts:1:31: more than 42 evaluation steps");
+    CHECK_CONTAINS(message, "t.rts:1:1: note: in this loop, where i = 10");
+    // let (1), the mesh (2), each vertex statement, its vector and the vector's three numbers
+    // (5 + 5): 12; then the statement m { } (13) copies m's two fields (15), and the emitter
+    // finds no triangle.
+    const std::string copy = "let m = mesh { vertex <0, 0, 0> vertex <1, 0, 0> }\nm { }";
+    small.limits.steps = 14;
+    CHECK_CONTAINS(error_of(copy, small), "t.rts:2:1: more than 14 evaluation steps");
+    small.limits.steps = 15;
+    CHECK_CONTAINS(error_of(copy, small),
+                   "t.rts:2:1: mesh needs at least one vertex and one triangle");
+    // The fuzz finding: a knot's loops, 360 x 46 passes of about a hundred expressions each,
+    // within the fuzz case's 20,000 iterations but not its 200,000 steps.
+    rtpp::CompileOptions fuzz;
+    fuzz.limits.loop_iterations = 20'000;
+    fuzz.limits.steps = 200'000;
+    try {
+        rtpp::compile_file((fs::path(RT_SOURCE_DIR) /
+                            "tests/fuzz/surfaces/rtpp/long-loop-body-0.66s-under-asan.rts")
+                               .string(),
+                           fuzz);
+        CHECK(false);
+    } catch (const rtpp::CompileError& e) {
+        CHECK_CONTAINS(e.what(), "more than 200000 evaluation steps");
+        CHECK_CONTAINS(e.what(), "note: in this loop, where");
+    }
+}
+
+// Includes are expanded as they are parsed, so a file that includes another twice, nested,
+// would parse 2^depth files: the includes read and the source read in all are bounded.
+TEST(includes_and_source_read_in_all_are_bounded) {
+    const fs::path dir = rt_test::work_dir("rtpp-include-total");
+    for (int i = 0; i < 30; ++i)
+        write_file(dir / rt_test::join('d', i, ".rts"),
+                   rt_test::join("include \"d", i + 1, ".rts\"\ninclude \"d", i + 1, ".rts\"\n"));
+    write_file(dir / "d30.rts", "let a = 1\n");
+    try {
+        rtpp::compile_file((dir / "d0.rts").string());
+        CHECK(false);
+    } catch (const rtpp::CompileError& e) {
+        CHECK_CONTAINS(e.what(),
+                       "more than 100000 includes read in all (a file included twice counts "
+                       "twice)");
+    }
+    const std::string top = "include \"part.rts\"\ninclude \"part.rts\"\n";
+    const std::string part = kCamera;
+    write_file(dir / "top.rts", top);
+    write_file(dir / "part.rts", part);
+    rtpp::CompileOptions small;
+    small.limits.includes = 1;
+    try {
+        rtpp::compile_file((dir / "top.rts").string(), small);
+        CHECK(false);
+    } catch (const rtpp::CompileError& e) {
+        CHECK_CONTAINS(e.what(), "top.rts:2:1: more than 1 includes read in all");
+    }
+    small.limits.includes = 10;
+    small.limits.source_total = top.size() + 2 * part.size() - 1;
+    try {
+        rtpp::compile_file((dir / "top.rts").string(), small);
+        CHECK(false);
+    } catch (const rtpp::CompileError& e) {
+        CHECK_CONTAINS(e.what(), rt_test::join("top.rts:2:1: more than ", small.limits.source_total,
+                                               " bytes of source read in all"));
+    }
+    // One byte more and both parts read (and a second camera is the error).
+    small.limits.source_total += 1;
+    try {
+        rtpp::compile_file((dir / "top.rts").string(), small);
+        CHECK(false);
+    } catch (const rtpp::CompileError& e) {
+        CHECK_CONTAINS(e.what(), "a second camera");
+    }
+}
+
+// The scene is held until the end (nothing is written on an error), so its size is bounded.
+TEST(the_scene_written_is_bounded) {
+    rtpp::CompileOptions small;
+    small.limits.output_size = 400;
+    const std::string scene =
+        kCamera +
+        "for i = 1 to 100 { sphere { centre <i, 0, 0> radius 0.5 surface { colour 1 kd 1 } } }";
+    const std::string message = error_of(scene, small);
+    CHECK_CONTAINS(message, "t.rts:2:20: the scene written is larger than 400 bytes");
+    small.limits.output_size = 100'000;
+    CHECK_EQ(error_of(scene, small), std::string());
+}
+
+// Every limit's default as docs/language.md's table gives it.
+TEST(the_documented_limits_are_the_code_s) {
+    const std::string page = read_file(fs::path(RT_SOURCE_DIR) / "docs" / "language.md");
+    const rtpp::Limits limits;
+    const auto grouped = [](long long n) {
+        std::string digits = std::to_string(n), out;
+        for (std::size_t i = 0; i < digits.size(); ++i) {
+            if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+            out += digits[i];
+        }
+        return out;
+    };
+    CHECK_CONTAINS(
+        page, "| loop iterations, all loops together | " + grouped(limits.loop_iterations) + " |");
+    CHECK_CONTAINS(page,
+                   "| evaluation steps, in all (see below) | " + grouped(limits.steps) + " |");
+    CHECK_CONTAINS(page, "counted | " + grouped(limits.objects) + " |");
+    CHECK_CONTAINS(page, "| vertices, triangles or objects in one object | " +
+                             grouped(limits.list_items) + " |");
+    CHECK_CONTAINS(page, "| include depth | " + grouped(limits.include_depth) + " |");
+    CHECK_CONTAINS(page, "| includes read, in all | " + grouped(limits.includes) + " |");
+    CHECK_CONTAINS(page, "| nesting (see below) | " + grouped(limits.nesting) + " |");
+    CHECK_CONTAINS(
+        page, "| a string or a name | " + std::to_string(limits.string_length) + " characters |");
+    CHECK_CONTAINS(page,
+                   "| one source file | " + std::to_string(limits.file_size >> 20) + " MiB |");
+    CHECK_CONTAINS(page, "| source read, in all, includes counted each time | " +
+                             std::to_string(limits.source_total >> 20) + " MiB |");
+    CHECK_CONTAINS(page,
+                   "| the scene written | " + std::to_string(limits.output_size >> 30) + " GiB |");
+    CHECK_EQ(limits.file_size % (1u << 20), std::size_t{0});
+    CHECK_EQ(limits.source_total % (1u << 20), std::size_t{0});
+    CHECK_EQ(limits.output_size % (std::size_t{1} << 30), std::size_t{0});
+}
+
 // The time is printed, not checked: timings belong in benchmarks, and a shared machine or a
 // sanitizer build can take many times as long.
 TEST(a_million_objects_compile) {

@@ -91,7 +91,12 @@ void Emitter::start_line(SourcePos pos) {
 }
 
 // Inside an object, a part written on another source line (a CSG operand) gets its own line.
+// Each object's start is where the output's size is checked: one object is bounded by the
+// list limit, and the scene, held until the end, by Limits::output_size.
 void Emitter::mark(SourcePos pos) {
+    if (out_.size() > limits_.output_size)
+        fail(pos,
+             "the scene written is larger than " + std::to_string(limits_.output_size) + " bytes");
     if (line_open_ && pos.file == mapped_file_ && pos.line == mapped_line_) return;
     if (line_open_) {
         out_ += '\n';

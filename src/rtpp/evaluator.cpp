@@ -29,7 +29,8 @@ class Scope {
 
 std::string show(double value) {
     char text[32];
-    std::snprintf(text, sizeof text, "%g", value);
+    // Whole numbers in full (a loop pass 8333334, not 8.33333e+06); 15 digits otherwise.
+    std::snprintf(text, sizeof text, "%.15g", value);
     return text;
 }
 
@@ -93,12 +94,21 @@ void Evaluator::bind(const std::string& name, Value value) {
     names_.emplace_back(name, std::move(value));
 }
 
+void Evaluator::step(SourcePos pos, long n) {
+    if (n > limits_.steps - steps_)
+        fail(pos, "more than " + std::to_string(limits_.steps) +
+                      " evaluation steps (each expression evaluated, each statement run and "
+                      "each field copied from a named object counts one)");
+    steps_ += n;
+}
+
 void Evaluator::run_block(const Block& block, Target target) {
     const Scope scope(names_);
     for (const Stmt& stmt : block) run_statement(stmt, target);
 }
 
 void Evaluator::run_statement(const Stmt& stmt, Target target) {
+    step(stmt.pos);
     switch (stmt.kind) {
         case Stmt::Kind::let:
             if (find_kind(stmt.name) != nullptr)
@@ -339,6 +349,8 @@ ObjectPtr Evaluator::build_object(const Expr& expr) {
     if (const Value* named = lookup(expr.text)) {
         if (named->type != Value::Type::object)
             fail(expr.pos, "'" + expr.text + "' is " + describe(*named) + ", not an object");
+        step(expr.pos,
+             static_cast<long>(named->object->fields.size() + named->object->children.size()));
         object = *named->object;
         for (FieldValue& field : object.fields) field.set_here = false;
     } else if (const Kind* kind = find_kind(expr.text)) {
@@ -364,21 +376,24 @@ ObjectPtr Evaluator::build_object(const Expr& expr) {
     return std::make_shared<const ObjectValue>(std::move(object));
 }
 
-double Evaluator::number_of(const Expr& expr, const std::string& what) {
+double Evaluator::number_of(const Expr& expr, std::string_view what, std::string_view what_more) {
     const Value v = evaluate(expr);
     if (v.type != Value::Type::number)
-        fail(expr.pos, what + " must be a number, got " + describe(v));
+        fail(expr.pos,
+             std::string(what) + std::string(what_more) + " must be a number, got " + describe(v));
     return v.number;
 }
 
-rt::Vec3 Evaluator::vector_of(const Expr& expr, const std::string& what) {
+rt::Vec3 Evaluator::vector_of(const Expr& expr, std::string_view what, std::string_view what_more) {
     const Value v = evaluate(expr);
     if (v.type != Value::Type::vector)
-        fail(expr.pos, what + " must be a vector <x, y, z>, got " + describe(v));
+        fail(expr.pos, std::string(what) + std::string(what_more) +
+                           " must be a vector <x, y, z>, got " + describe(v));
     return v.vector;
 }
 
 Value Evaluator::evaluate(const Expr& expr) {
+    step(expr.pos);
     switch (expr.kind) {
         case Expr::Kind::number:
             return Value::of(expr.value);
@@ -421,7 +436,7 @@ Value Evaluator::evaluate(const Expr& expr) {
             return v;
         }
         case Expr::Kind::member: {
-            const rt::Vec3 v = vector_of(expr.args[0], "." + expr.text);
+            const rt::Vec3 v = vector_of(expr.args[0], ".", expr.text);
             return Value::of(expr.text == "x" ? v.x : expr.text == "y" ? v.y : v.z);
         }
     }
@@ -429,13 +444,15 @@ Value Evaluator::evaluate(const Expr& expr) {
 }
 
 Value Evaluator::binary(const Expr& expr) {
-    const std::string& op = expr.text;
+    // Compared as a view, whose literals' lengths are known when compiled: most comparisons
+    // end at the length (a std::string against a char* measured it every time).
+    const std::string_view op = expr.text;
     if (op == "and" || op == "or") {
         // Short-circuit, as people expect of `i > 0 and n / i > 2`.
-        const bool lhs = number_of(expr.args[0], op + "'s operand") != 0;
+        const bool lhs = number_of(expr.args[0], op, "'s operand") != 0;
         if (op == "and" && !lhs) return Value::of(0.0);
         if (op == "or" && lhs) return Value::of(1.0);
-        return Value::of(number_of(expr.args[1], op + "'s operand") != 0 ? 1.0 : 0.0);
+        return Value::of(number_of(expr.args[1], op, "'s operand") != 0 ? 1.0 : 0.0);
     }
     const Value a = evaluate(expr.args[0]);
     const Value b = evaluate(expr.args[1]);
@@ -483,48 +500,52 @@ Value Evaluator::binary(const Expr& expr) {
     }
     if (a.type == T::number && b.type == T::vector && op == "*")
         return Value::of(finite(b.vector * a.number, pos));
-    fail(pos, "cannot apply " + op + " to " + describe(a) + " and " + describe(b));
+    fail(pos, "cannot apply " + expr.text + " to " + describe(a) + " and " + describe(b));
 }
 
 Value Evaluator::call(const Expr& expr) {
     const std::string& f = expr.text;
+    const std::string_view name = expr.text;  // compared as binary() compares its operator
     const auto args = [&](std::size_t n) {
         if (expr.args.size() != n)
             fail(expr.pos, f + " takes " + std::to_string(n) +
                                (n == 1 ? " argument" : " arguments") + ", got " +
                                std::to_string(expr.args.size()));
     };
-    const auto num = [&](std::size_t i) { return number_of(expr.args[i], f + "'s argument"); };
-    const auto vec = [&](std::size_t i) { return vector_of(expr.args[i], f + "'s argument"); };
+    const auto num = [&](std::size_t i) { return number_of(expr.args[i], f, "'s argument"); };
+    const auto vec = [&](std::size_t i) { return vector_of(expr.args[i], f, "'s argument"); };
     const auto result = [&](double v) { return Value::of(finite(v, expr.pos)); };
-    if (f == "sin") return args(1), result(sin_degrees(num(0)));
-    if (f == "cos") return args(1), result(cos_degrees(num(0)));
-    if (f == "tan") {
+    if (name == "sin") return args(1), result(sin_degrees(num(0)));
+    if (name == "cos") return args(1), result(cos_degrees(num(0)));
+    if (name == "tan") {
         args(1);
-        const double c = cos_degrees(num(0));
-        if (c == 0) fail(expr.pos, "tan of an odd multiple of 90 degrees is infinite");
-        return result(tan_degrees(num(0)));
+        const double angle = num(0);
+        if (cos_degrees(angle) == 0)
+            fail(expr.pos, "tan of an odd multiple of 90 degrees is infinite");
+        return result(tan_degrees(angle));
     }
-    if (f == "asin") return args(1), result(std::asin(num(0)) * kDegrees);
-    if (f == "acos") return args(1), result(std::acos(num(0)) * kDegrees);
-    if (f == "atan") return args(1), result(std::atan(num(0)) * kDegrees);
-    if (f == "atan2") return args(2), result(std::atan2(num(0), num(1)) * kDegrees);
-    if (f == "sqrt") {
+    if (name == "asin") return args(1), result(std::asin(num(0)) * kDegrees);
+    if (name == "acos") return args(1), result(std::acos(num(0)) * kDegrees);
+    if (name == "atan") return args(1), result(std::atan(num(0)) * kDegrees);
+    if (name == "atan2") return args(2), result(std::atan2(num(0), num(1)) * kDegrees);
+    if (name == "sqrt") {
         args(1);
-        if (num(0) < 0) fail(expr.pos, "sqrt of a negative number");
-        return result(std::sqrt(num(0)));
+        const double x = num(0);
+        if (x < 0) fail(expr.pos, "sqrt of a negative number");
+        return result(std::sqrt(x));
     }
-    if (f == "pow") return args(2), result(std::pow(num(0), num(1)));
-    if (f == "exp") return args(1), result(std::exp(num(0)));
-    if (f == "log") {
+    if (name == "pow") return args(2), result(std::pow(num(0), num(1)));
+    if (name == "exp") return args(1), result(std::exp(num(0)));
+    if (name == "log") {
         args(1);
-        if (!(num(0) > 0)) fail(expr.pos, "log needs a number > 0");
-        return result(std::log(num(0)));
+        const double x = num(0);
+        if (!(x > 0)) fail(expr.pos, "log needs a number > 0");
+        return result(std::log(x));
     }
-    if (f == "abs") return args(1), result(std::fabs(num(0)));
-    if (f == "floor") return args(1), result(std::floor(num(0)));
-    if (f == "ceil") return args(1), result(std::ceil(num(0)));
-    if (f == "round") {
+    if (name == "abs") return args(1), result(std::fabs(num(0)));
+    if (name == "floor") return args(1), result(std::floor(num(0)));
+    if (name == "ceil") return args(1), result(std::ceil(num(0)));
+    if (name == "round") {
         // round(x) to a whole number, round(x, n) to n decimals: the double nearest the
         // decimal that the exact value of x rounds to (as printf rounds it, and Python's
         // round), not round(x * 10^n) / 10^n, whose multiplication can move a value across
@@ -538,22 +559,22 @@ Value Evaluator::call(const Expr& expr) {
         std::snprintf(text, sizeof text, "%.*f", static_cast<int>(digits), num(0));
         return result(std::strtod(text, nullptr));
     }
-    if (f == "min" || f == "max") {
+    if (name == "min" || name == "max") {
         if (expr.args.empty()) fail(expr.pos, f + " needs at least one argument");
         double best = num(0);
         for (std::size_t i = 1; i < expr.args.size(); ++i)
-            best = f == "min" ? std::fmin(best, num(i)) : std::fmax(best, num(i));
+            best = name == "min" ? std::fmin(best, num(i)) : std::fmax(best, num(i));
         return Value::of(best);
     }
-    if (f == "length") return args(1), result(rt::length(vec(0)));
-    if (f == "normalize") {
+    if (name == "length") return args(1), result(rt::length(vec(0)));
+    if (name == "normalize") {
         args(1);
         const rt::Vec3 v = vec(0);
         if (!(rt::length(v) > 0)) fail(expr.pos, "normalize of a zero vector");
         return Value::of(finite(unit(v), expr.pos));
     }
-    if (f == "cross") return args(2), Value::of(finite(rt::cross(vec(0), vec(1)), expr.pos));
-    if (f == "dot") return args(2), result(rt::dot(vec(0), vec(1)));
+    if (name == "cross") return args(2), Value::of(finite(rt::cross(vec(0), vec(1)), expr.pos));
+    if (name == "dot") return args(2), result(rt::dot(vec(0), vec(1)));
     fail(expr.pos, "unknown function '" + f + "'");
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -39,18 +40,24 @@ class Evaluator {
     ObjectPtr build_object(const Expr& expr);
     Value call(const Expr& expr);
     Value binary(const Expr& expr);
-    double number_of(const Expr& expr, const std::string& what);
-    rt::Vec3 vector_of(const Expr& expr, const std::string& what);
+    // The value of `expr`, which must be a number (a vector); the message of a value of
+    // another type names it as `what` followed by `what_more` (joined only then, since these
+    // run for every operand).
+    double number_of(const Expr& expr, std::string_view what, std::string_view what_more = {});
+    rt::Vec3 vector_of(const Expr& expr, std::string_view what, std::string_view what_more = {});
 
     const Value* lookup(const std::string& name) const;
     std::string suggestion(const std::string& name) const;
     void bind(const std::string& name, Value value);
+    // Counts `n` evaluation steps against Limits::steps.
+    void step(SourcePos pos, long n = 1);
 
     const Limits& limits_;
     Emitter& emitter_;
     std::vector<std::pair<std::string, Value>> names_;    // innermost last
     std::vector<std::pair<std::string, Value>> defined_;  // by -D, in order
     long iterations_ = 0;
+    long steps_ = 0;
     int depth_ = 0;
 };
 

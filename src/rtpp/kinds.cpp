@@ -131,8 +131,10 @@ const std::vector<Kind>& all_kinds() {
 }
 
 const Kind* find_kind(std::string_view keyword) {
+    // The first letter first: this runs for every let and object statement.
+    if (keyword.empty()) return nullptr;
     for (const Kind& kind : all_kinds())
-        if (keyword == kind.keyword) return &kind;
+        if (kind.keyword[0] == keyword[0] && keyword == kind.keyword) return &kind;
     return nullptr;
 }
 

@@ -245,6 +245,9 @@ class Parser {
         if (static_cast<int>(open_files_.size()) >= options_.limits.include_depth)
             fail(pos, "includes nested more than " + std::to_string(options_.limits.include_depth) +
                           " deep");
+        if (files_.includes_read >= options_.limits.includes)
+            fail(pos, "more than " + std::to_string(options_.limits.includes) +
+                          " includes read in all (a file included twice counts twice)");
         // The including file's directory first, then each -I directory in order.
         std::vector<std::filesystem::path> candidates;
         const std::filesystem::path as_written(written);
@@ -265,6 +268,12 @@ class Parser {
                 fail(pos, "included file '" + candidate.string() + "' is not a regular file (" +
                               e.kind + ")");
             }
+            if (text.size() > options_.limits.source_total - files_.text_read)
+                fail(pos, "more than " + std::to_string(options_.limits.source_total) +
+                              " bytes of source read in all (a file included twice counts "
+                              "twice)");
+            files_.text_read += text.size();
+            ++files_.includes_read;
             std::error_code ec;
             std::filesystem::path canonical = std::filesystem::weakly_canonical(candidate, ec);
             if (ec) canonical = candidate;
@@ -504,6 +513,10 @@ Block parse_program(const std::string& text, const std::string& name,
     if (text.size() > options.limits.file_size)
         throw CompileError(name + ": larger than " + std::to_string(options.limits.file_size) +
                            " bytes");
+    if (text.size() > options.limits.source_total - files.text_read)
+        throw CompileError(name + ": more than " + std::to_string(options.limits.source_total) +
+                           " bytes of source read in all");
+    files.text_read += text.size();
     const std::filesystem::path path = dir / std::filesystem::path(name).filename();
     const int file = files.add({name, path, SourcePos{}});
     std::vector<std::string> open_files;

@@ -33,6 +33,11 @@ class SourceFiles {
     const SourceFile& operator[](int index) const {
         return files_[static_cast<std::size_t>(index)];
     }
+    // The source text read so far, every file counted each time it is read, and the includes
+    // read: what Limits::source_total and Limits::includes bound.
+    std::size_t text_read = 0;
+    long includes_read = 0;
+
     // "name:line:col".
     std::string place(SourcePos pos) const;
     // The message, prefixed by its place, then one "  included from name:line:col" line for

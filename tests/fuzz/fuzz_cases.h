@@ -39,6 +39,9 @@ inline std::string rtpp_case(std::string_view bytes) {
     options.limits.loop_iterations = 20'000;
     options.limits.objects = 20'000;
     options.limits.list_items = 20'000;
+    // A few milliseconds of work: loops within the iteration limit can have long bodies.
+    options.limits.steps = 200'000;
+    options.limits.output_size = 16u << 20;
     try {
         rtpp::compile(std::string(bytes), "fuzz.rts", "/nonexistent/rt-fuzz", options);
     } catch (const rtpp::CompileError& e) {
