@@ -1,5 +1,5 @@
 // Helpers for tests of rtpp's compiler: a camera every test scene can start with, and the
-// message a source's compilation fails with.
+// message a source's (or a file's) compilation fails with.
 #pragma once
 
 #include <string>
@@ -16,6 +16,18 @@ inline const std::string kCamera =
 inline std::string error_of(const std::string& source, const rtpp::CompileOptions& options = {}) {
     try {
         rtpp::compile(source, "t.rts", ".", options);
+    } catch (const rtpp::CompileError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+// The same for a file compiled with compile_file (its includes resolved against its own
+// directory).
+inline std::string file_error_of(const std::string& path,
+                                 const rtpp::CompileOptions& options = {}) {
+    try {
+        rtpp::compile_file(path, options);
     } catch (const rtpp::CompileError& e) {
         return e.what();
     }

@@ -28,6 +28,7 @@ using rt_test::litter;
 using rt_test::read_file;
 using rt_test::write_file;
 using rtpp_test::error_of;
+using rtpp_test::file_error_of;
 using rtpp_test::kCamera;
 
 namespace {
@@ -344,11 +345,8 @@ TEST(includes_resolve_and_report_their_chain) {
                    "t.rts:1:1: cannot read included file 'nowhere.rts'");
     // An error in an included file names it and the chain of includes that led there.
     write_file(dir / "lib" / "more" / "shapes.rts", "let ball = sphere { radius 1 / 0 }\n");
-    try {
-        rtpp::compile_file((dir / "scene.rts").string());
-        CHECK(false);
-    } catch (const rtpp::CompileError& e) {
-        const std::string m = e.what();
+    {
+        const std::string m = file_error_of((dir / "scene.rts").string());
         CHECK_CONTAINS(m, "shapes.rts:1:30: division by zero\n  included from ");
         CHECK_CONTAINS(m,
                        "colours.rts:2:1\n  included from " + (dir / "scene.rts").string() + ":2:1");
@@ -356,12 +354,8 @@ TEST(includes_resolve_and_report_their_chain) {
     // A cycle is an error at the include that closes it.
     write_file(dir / "a.rts", "include \"b.rts\"\n");
     write_file(dir / "b.rts", "\ninclude \"a.rts\"\n");
-    try {
-        rtpp::compile_file((dir / "a.rts").string());
-        CHECK(false);
-    } catch (const rtpp::CompileError& e) {
-        CHECK_CONTAINS(e.what(), "b.rts:2:1: include cycle: 'a.rts' is already being read");
-    }
+    CHECK_CONTAINS(file_error_of((dir / "a.rts").string()),
+                   "b.rts:2:1: include cycle: 'a.rts' is already being read");
 }
 
 TEST(limits_stop_runaway_input) {
@@ -387,12 +381,8 @@ TEST(limits_stop_runaway_input) {
         write_file(dir / rt_test::join('f', i, ".rts"),
                    rt_test::join("include \"f", i + 1, ".rts\"\n"));
     write_file(dir / "f5.rts", "");
-    try {
-        rtpp::compile_file((dir / "f0.rts").string(), small);
-        CHECK(false);
-    } catch (const rtpp::CompileError& e) {
-        CHECK_CONTAINS(e.what(), "f2.rts:1:1: includes nested more than 3 deep");
-    }
+    CHECK_CONTAINS(file_error_of((dir / "f0.rts").string(), small),
+                   "f2.rts:1:1: includes nested more than 3 deep");
 }
 
 // The work a program does is bounded by counting it, not its loops alone: a loop within the
@@ -431,16 +421,12 @@ TEST(steps_count_statements_expressions_and_copied_fields) {
     rtpp::CompileOptions fuzz;
     fuzz.limits.loop_iterations = 20'000;
     fuzz.limits.steps = 200'000;
-    try {
-        rtpp::compile_file((fs::path(RT_SOURCE_DIR) /
-                            "tests/fuzz/surfaces/rtpp/long-loop-body-0.66s-under-asan.rts")
-                               .string(),
-                           fuzz);
-        CHECK(false);
-    } catch (const rtpp::CompileError& e) {
-        CHECK_CONTAINS(e.what(), "more than 200000 evaluation steps");
-        CHECK_CONTAINS(e.what(), "note: in this loop, where");
-    }
+    const std::string knot = file_error_of(
+        (fs::path(RT_SOURCE_DIR) / "tests/fuzz/surfaces/rtpp/long-loop-body-0.66s-under-asan.rts")
+            .string(),
+        fuzz);
+    CHECK_CONTAINS(knot, "more than 200000 evaluation steps");
+    CHECK_CONTAINS(knot, "note: in this loop, where");
 }
 
 // Includes are expanded as they are parsed, so a file that includes another twice, nested,
@@ -451,43 +437,25 @@ TEST(includes_and_source_read_in_all_are_bounded) {
         write_file(dir / rt_test::join('d', i, ".rts"),
                    rt_test::join("include \"d", i + 1, ".rts\"\ninclude \"d", i + 1, ".rts\"\n"));
     write_file(dir / "d30.rts", "let a = 1\n");
-    try {
-        rtpp::compile_file((dir / "d0.rts").string());
-        CHECK(false);
-    } catch (const rtpp::CompileError& e) {
-        CHECK_CONTAINS(e.what(),
-                       "more than 100000 includes read in all (a file included twice counts "
-                       "twice)");
-    }
+    CHECK_CONTAINS(file_error_of((dir / "d0.rts").string()),
+                   "more than 100000 includes read in all (a file included twice counts "
+                   "twice)");
     const std::string top = "include \"part.rts\"\ninclude \"part.rts\"\n";
     const std::string part = kCamera;
     write_file(dir / "top.rts", top);
     write_file(dir / "part.rts", part);
     rtpp::CompileOptions small;
     small.limits.includes = 1;
-    try {
-        rtpp::compile_file((dir / "top.rts").string(), small);
-        CHECK(false);
-    } catch (const rtpp::CompileError& e) {
-        CHECK_CONTAINS(e.what(), "top.rts:2:1: more than 1 includes read in all");
-    }
+    CHECK_CONTAINS(file_error_of((dir / "top.rts").string(), small),
+                   "top.rts:2:1: more than 1 includes read in all");
     small.limits.includes = 10;
     small.limits.source_total = top.size() + 2 * part.size() - 1;
-    try {
-        rtpp::compile_file((dir / "top.rts").string(), small);
-        CHECK(false);
-    } catch (const rtpp::CompileError& e) {
-        CHECK_CONTAINS(e.what(), rt_test::join("top.rts:2:1: more than ", small.limits.source_total,
-                                               " bytes of source read in all"));
-    }
+    CHECK_CONTAINS(file_error_of((dir / "top.rts").string(), small),
+                   rt_test::join("top.rts:2:1: more than ", small.limits.source_total,
+                                 " bytes of source read in all"));
     // One byte more and both parts read (and a second camera is the error).
     small.limits.source_total += 1;
-    try {
-        rtpp::compile_file((dir / "top.rts").string(), small);
-        CHECK(false);
-    } catch (const rtpp::CompileError& e) {
-        CHECK_CONTAINS(e.what(), "a second camera");
-    }
+    CHECK_CONTAINS(file_error_of((dir / "top.rts").string(), small), "a second camera");
 }
 
 // The scene is held until the end (nothing is written on an error), so its size is bounded.

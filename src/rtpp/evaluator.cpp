@@ -504,16 +504,15 @@ Value Evaluator::binary(const Expr& expr) {
 }
 
 Value Evaluator::call(const Expr& expr) {
-    const std::string& f = expr.text;
     const std::string_view name = expr.text;  // compared as binary() compares its operator
     const auto args = [&](std::size_t n) {
         if (expr.args.size() != n)
-            fail(expr.pos, f + " takes " + std::to_string(n) +
+            fail(expr.pos, expr.text + " takes " + std::to_string(n) +
                                (n == 1 ? " argument" : " arguments") + ", got " +
                                std::to_string(expr.args.size()));
     };
-    const auto num = [&](std::size_t i) { return number_of(expr.args[i], f, "'s argument"); };
-    const auto vec = [&](std::size_t i) { return vector_of(expr.args[i], f, "'s argument"); };
+    const auto num = [&](std::size_t i) { return number_of(expr.args[i], name, "'s argument"); };
+    const auto vec = [&](std::size_t i) { return vector_of(expr.args[i], name, "'s argument"); };
     const auto result = [&](double v) { return Value::of(finite(v, expr.pos)); };
     if (name == "sin") return args(1), result(sin_degrees(num(0)));
     if (name == "cos") return args(1), result(cos_degrees(num(0)));
@@ -560,7 +559,7 @@ Value Evaluator::call(const Expr& expr) {
         return result(std::strtod(text, nullptr));
     }
     if (name == "min" || name == "max") {
-        if (expr.args.empty()) fail(expr.pos, f + " needs at least one argument");
+        if (expr.args.empty()) fail(expr.pos, expr.text + " needs at least one argument");
         double best = num(0);
         for (std::size_t i = 1; i < expr.args.size(); ++i)
             best = name == "min" ? std::fmin(best, num(i)) : std::fmax(best, num(i));
@@ -575,7 +574,7 @@ Value Evaluator::call(const Expr& expr) {
     }
     if (name == "cross") return args(2), Value::of(finite(rt::cross(vec(0), vec(1)), expr.pos));
     if (name == "dot") return args(2), result(rt::dot(vec(0), vec(1)));
-    fail(expr.pos, "unknown function '" + f + "'");
+    fail(expr.pos, "unknown function '" + expr.text + "'");
 }
 
 }  // namespace rtpp

@@ -268,11 +268,10 @@ class Parser {
                 fail(pos, "included file '" + candidate.string() + "' is not a regular file (" +
                               e.kind + ")");
             }
-            if (text.size() > options_.limits.source_total - files_.text_read)
+            if (!files_.count_text(text.size(), options_.limits.source_total))
                 fail(pos, "more than " + std::to_string(options_.limits.source_total) +
                               " bytes of source read in all (a file included twice counts "
                               "twice)");
-            files_.text_read += text.size();
             ++files_.includes_read;
             std::error_code ec;
             std::filesystem::path canonical = std::filesystem::weakly_canonical(candidate, ec);
@@ -513,10 +512,9 @@ Block parse_program(const std::string& text, const std::string& name,
     if (text.size() > options.limits.file_size)
         throw CompileError(name + ": larger than " + std::to_string(options.limits.file_size) +
                            " bytes");
-    if (text.size() > options.limits.source_total - files.text_read)
+    if (!files.count_text(text.size(), options.limits.source_total))
         throw CompileError(name + ": more than " + std::to_string(options.limits.source_total) +
                            " bytes of source read in all");
-    files.text_read += text.size();
     const std::filesystem::path path = dir / std::filesystem::path(name).filename();
     const int file = files.add({name, path, SourcePos{}});
     std::vector<std::string> open_files;

@@ -2,6 +2,7 @@
 // was included from), and the one error type, whose message carries the "included from" chain.
 #pragma once
 
+#include <algorithm>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -33,9 +34,14 @@ class SourceFiles {
     const SourceFile& operator[](int index) const {
         return files_[static_cast<std::size_t>(index)];
     }
-    // The source text read so far, every file counted each time it is read, and the includes
-    // read: what Limits::source_total and Limits::includes bound.
-    std::size_t text_read = 0;
+    // Counts `size` bytes more of source read (every file each time it is read) against
+    // `limit`: false, counting nothing, when they would pass it.
+    bool count_text(std::size_t size, std::size_t limit) {
+        if (size > limit - std::min(text_read_, limit)) return false;
+        text_read_ += size;
+        return true;
+    }
+    // The includes read so far, which Limits::includes bounds.
     long includes_read = 0;
 
     // "name:line:col".
@@ -46,6 +52,7 @@ class SourceFiles {
 
   private:
     std::vector<SourceFile> files_;
+    std::size_t text_read_ = 0;
 };
 
 // A user-facing error: what() is complete, place and include chain included. An rt::Error,
