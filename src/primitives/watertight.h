@@ -109,10 +109,7 @@ class TriangleRay {
         double x, y, z;  // z: the depth along the ray's dominant axis, not yet divided by it
     };
     Point project(const Vec3& v) const {
-        // Through an array: its elements are picked by index (a load), where Vec3's
-        // operator[] would branch on the axis for each of them.
-        const Vec3 d = v - origin_;
-        const double p[3] = {d.x, d.y, d.z};
+        const Vec3 p = v - origin_;
         return {p[kx_] - sx_ * p[kz_], p[ky_] - sy_ * p[kz_], p[kz_]};
     }
     static double edge(const Point& p, const Point& q) { return p.x * q.y - p.y * q.x; }
