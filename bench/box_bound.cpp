@@ -4,8 +4,9 @@
 // nearer hit. So the objects with a box on the ray before its hit (anywhere, for a ray that
 // hits nothing) are a lower bound on the tests, whatever the tree, the leaf sizes or the
 // order of the visits. With each object's box cut into a grid of G x G x G cells, and each
-// cell narrowed to the part of the object in it (spatial splits at their finest), the bound
-// falls as G grows; it shows what spatial splits could win and what they would cost
+// cell narrowed to the part of the object in it, the same count is the floor for any
+// hierarchy over those pieces (what spatial splits that cut each object that finely could
+// reach); it falls as G grows, and shows what such splits could win and what they would cost
 // (pieces per object). Spheres are narrowed to their surface in each cell; other bounded
 // objects are cut as boxes; unbounded ones (planes) count one test each, as rt tests them.
 //   rt_bench_box_bound [--grids 1,2,4,8] [--step N] scene.in
