@@ -176,3 +176,23 @@ TEST(what_the_campaigns_found) {
         run_case(read_file(entry.path()), tally);
     CHECK(tally.cases >= 1);
 }
+
+TEST(a_render_that_tests_every_triangle_is_only_read) {
+    // The reader campaign's timeout (regressions/reader-far-rays-through-meshes.in): twelve
+    // vases seen from 4.4e26 away, 8 lights. Read, counted, and not rendered by the harness.
+    const std::string text = read_file(fs::path(RT_SOURCE_DIR) /
+                                       "tests/fuzz/regressions/reader-far-rays-through-meshes.in");
+    std::istringstream in(text);
+    const rt::Scene scene = rt::read_scene(in, "far.in", fs::path(RT_SOURCE_DIR) / "scenes", 1);
+    CHECK_EQ(scene.objects.size(), 13u);
+    CHECK_EQ(scene.mesh_triangles % 12, 0u);
+    CHECK(scene.mesh_triangles / 12 > 1900);  // the vase's 1968 faces, less any of zero area
+    CHECK(!rt_fuzz::cheap_to_render(scene));
+    // One vase and one light: 9 pixels x 5 rays x 2 x 1968 triangles, rendered.
+    std::istringstream one(
+        "102 0 0 5 0 0 0 1 0 0 0 1 0 3 3\n104 4 3 2 1 1 1\n"
+        "15 2 \"models/vase.ply\" 100 0.2 0.45 0.7 0.35 80 0.65 0 1\n");
+    const rt::Scene small = rt::read_scene(one, "one.in", fs::path(RT_SOURCE_DIR) / "scenes", 1);
+    CHECK_EQ(small.mesh_triangles * 12, scene.mesh_triangles);
+    CHECK(rt_fuzz::cheap_to_render(small));
+}

@@ -3,7 +3,9 @@
 // of them), no gaps at shared edges and vertices, zero-area triangles, the interval, an affine
 // of a mesh, and its errors with their places.
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <string>
 #include <utility>
@@ -255,6 +257,39 @@ TEST(thousands_of_triangles_agree_exactly_with_a_search_over_each) {
     CHECK(ties > 20);
 }
 
+TEST(rays_from_far_away_agree_with_a_search_over_each) {
+    // Rays from 1e3 to 4e26 away (reflected off a huge sphere or torus, say) aimed at a mesh
+    // near the origin. From beyond about 1e7 the boxes' margins, relative to the distance,
+    // cover the whole mesh, and from 1e17 on the origin's rounding does too, so every
+    // triangle is tested: slower, but the answer must still be the search's, bit for bit.
+    Random random(2718);
+    const MeshData m = height_field(12, random);
+    const Shape mesh = m.shape();
+    const std::vector<Shape> each = m.separate_triangles();
+    int hits = 0;
+    for (const double far : {1e3, 1e7, 1e12, 1e17, 1e20, 4.4e26}) {
+        for (int i = 0; i < 200; ++i) {
+            const Vec3 origin = random.unit_vector() * far;
+            const Vec3 aim(random.uniform(-2, 2), random.uniform(-2, 2), random.uniform(-1, 1));
+            const Ray ray = ray_from_to(origin, aim);
+            Hit best;
+            for (const Shape& triangle : each) {
+                Hit h;
+                if (triangle.intersect(ray, {kTMin, best.t}, h)) best = h;
+            }
+            Hit hit;
+            const bool found = mesh.intersect(ray, {kTMin, kInfinity}, hit);
+            CHECK_EQ(found, best.t < kInfinity);
+            CHECK_EQ(mesh.intersect_any(ray, {kTMin, kInfinity}), found);
+            if (!found) continue;
+            ++hits;
+            CHECK_EQ(std::bit_cast<std::uint64_t>(hit.t), std::bit_cast<std::uint64_t>(best.t));
+        }
+    }
+    // About 390: from 1e17 on, no test can resolve the mesh, and these rays miss in both.
+    CHECK(hits > 350);
+}
+
 TEST(rays_at_shared_edges_and_vertices_never_slip_through) {
     Random random(4141);
     int rays = 0;
@@ -342,6 +377,7 @@ TEST(zero_area_triangles_are_skipped_and_counted) {
         "0 1 2  0 2 3  0 0 1  1 5 2  0 2 4\n";
     const Scene scene = parse_scene(join(kTestViewer, mesh, kSurface));
     CHECK_EQ(scene.skipped_triangles, 3u);
+    CHECK_EQ(scene.mesh_triangles, 2u);  // the two kept
     const Shape& shape = scene.objects.at(0).shape;
     CHECK(first_hit(shape, {{0.5, 0.25, 3}, {0, 0, -1}}).has_value());
     CHECK(first_hit(shape, {{0.25, 0.5, 3}, {0, 0, -1}}).has_value());

@@ -39,6 +39,7 @@ struct SceneInput {
 // triangles the file's mesh left out.
 struct FileMeshShape {
     ShapeData shape;
+    std::size_t kept = 0;  // the triangles it holds
     std::size_t skipped = 0;
 };
 // Makes the shape from what the file holds; throws rt::Error("<reason>") without a place.
@@ -107,8 +108,12 @@ class SceneReader {
     Light light(std::string_view what);
 
     int threads() const { return threads_; }
-    // A mesh reports the zero-area triangles it skipped; the scene carries the total.
-    void count_skipped_triangles(std::size_t count) { skipped_triangles_ += count; }
+    // A mesh reports the triangles it holds and the zero-area ones it skipped; the scene
+    // carries the totals.
+    void count_mesh_triangles(std::size_t kept, std::size_t skipped) {
+        mesh_triangles_ += kept;
+        skipped_triangles_ += skipped;
+    }
     std::size_t skipped_triangles() const { return skipped_triangles_; }
     // A surface read reflects and transmits from one hit (Scene::splits_rays).
     void note_splitting_surface() { splits_rays_ = true; }
@@ -169,6 +174,7 @@ class SceneReader {
     long light_samples_ = 0;        // taken by the lights so far
     ObjectStart last_object_;       // the object (at any depth) whose ID was read last
     ObjectStart top_level_object_;  // the top-level object that holds it
+    std::size_t mesh_triangles_ = 0;
     std::size_t skipped_triangles_ = 0;
     bool splits_rays_ = false;
     int threads_ = 1;

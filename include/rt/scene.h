@@ -45,6 +45,9 @@ struct Scene {
     std::shared_ptr<const ObjectIndex> index;
     // Zero-area triangles that meshes left out (they are accepted, not errors).
     std::size_t skipped_triangles = 0;
+    // The triangles the meshes hold, each placement of a mesh counted: with the objects, how
+    // many primitives a ray may have to test (where no box can tell them apart, all of them).
+    std::size_t mesh_triangles = 0;
     // What the reader accepted but ignored (a mesh file's texture coordinates, say), one
     // sentence each naming its file, for rt to show as notes.
     std::vector<std::string> notes;

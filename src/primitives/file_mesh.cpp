@@ -58,6 +58,7 @@ FileMeshShape make(const MeshFile& file, long mode, int threads) {
     if (mesh.core.triangles.empty())
         throw Error("it has no triangle with non-zero area (all " +
                     std::to_string(file.triangles.size()) + " are degenerate)");
+    made.kept = mesh.core.triangles.size();
     if (mode != kFlat) {
         mesh.normals = file.normals;
         check_normals(mesh.normals);

@@ -39,7 +39,7 @@ ShapeData read(SceneReader& reader) {
     if (mesh.triangles.empty())
         reader.fail(count_at, "mesh has no triangle with non-zero area (all " +
                                   std::to_string(triangle_count) + " are degenerate)");
-    reader.count_skipped_triangles(skipped);
+    reader.count_mesh_triangles(mesh.triangles.size(), skipped);
     return std::make_shared<const Core>(std::move(mesh));
 }
 

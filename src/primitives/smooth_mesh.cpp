@@ -47,7 +47,7 @@ ShapeData read(SceneReader& reader) {
     if (mesh.core.triangles.empty())
         reader.fail(count_at, "smooth mesh has no triangle with non-zero area (all " +
                                   std::to_string(triangle_count) + " are degenerate)");
-    reader.count_skipped_triangles(skipped);
+    reader.count_mesh_triangles(mesh.core.triangles.size(), skipped);
     return std::make_shared<const mesh_core::ShadedMesh>(std::move(mesh));
 }
 

@@ -239,6 +239,7 @@ Scene SceneReader::read_scene() {
                    "every scene needs)");
     if (!have_viewer) fail(lexer_->peek().where, "no viewer (102) in the scene; one is required");
     scene.skipped_triangles = skipped_triangles_;
+    scene.mesh_triangles = mesh_triangles_;
     scene.notes = std::move(notes_);
     scene.splits_rays = splits_rays_;
     return scene;

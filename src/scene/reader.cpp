@@ -223,7 +223,7 @@ ShapeData SceneReader::mesh_file(std::string_view what, int mode, const MakeFile
         MeshFileCache::Entry& entry = mesh_files_->load(resolved, notes_);
         auto& made = entry.shapes[static_cast<std::size_t>(mode)];
         if (!made) made = make(entry.file);
-        count_skipped_triangles(made->skipped);
+        count_mesh_triangles(made->kept, made->skipped);
         return made->shape;
     } catch (const Error& e) {
         fail(where, cannot_read("mesh file", written, resolved, e.what()));

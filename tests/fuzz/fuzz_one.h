@@ -40,22 +40,41 @@ struct Outcome {
     bool placed = true;  // the error names its place
 };
 
-// Textures are looked for in `base_dir`. Renders only scenes whose lighting costs little, at
-// 3 x 3 pixels, so that every case takes milliseconds.
+// The render's size: 3 x 3 pixels, depth 4.
+inline constexpr int kPixels = 3;
+inline constexpr int kDepth = 4;
+
+// Whether rendering the scene stays within the few milliseconds a case may take. Shadow rays
+// are bounded by the lights' samples. Triangles are bounded too: a mesh placed by a few bytes
+// holds thousands, and where no box can tell them apart (a ray from 1e26 away, whose origin's
+// rounding is larger than the mesh) a ray tests every one. That is the cost of the linear scan
+// and no hang, but at most kPixels^2 x (rays of a pixel's tree) x (1 + samples) x triangles
+// tests under the sanitizers can take minutes, so such scenes are only read.
+inline bool cheap_to_render(const rt::Scene& scene) {
+    long samples = 0;
+    for (const rt::Light& light : scene.lights) samples += light.sample_count();
+    if (samples > 4096) return false;
+    // A pixel's ray tree: a chain of kDepth + 1 rays, or a full binary tree where surfaces both
+    // reflect and refract.
+    const double rays = kPixels * kPixels * (scene.splits_rays ? (2 << kDepth) - 1 : kDepth + 1) *
+                        (1.0 + static_cast<double>(samples));
+    return rays * static_cast<double>(scene.mesh_triangles) <= 1e6;
+}
+
+// Textures are looked for in `base_dir`. Renders only scenes that are cheap to render, at
+// kPixels x kPixels, so that every case takes milliseconds.
 inline Outcome fuzz_one(std::string_view bytes, const std::filesystem::path& base_dir) {
     constexpr std::string_view kName = "fuzz.in";
     Outcome outcome;
     std::istringstream in{std::string(bytes)};
     try {
         rt::Scene scene = rt::read_scene(in, std::string(kName), base_dir, 1);
-        long samples = 0;
-        for (const rt::Light& light : scene.lights) samples += light.sample_count();
-        if (samples <= 4096) {
-            scene.viewer.xres = std::min(scene.viewer.xres, 3);
-            scene.viewer.yres = std::min(scene.viewer.yres, 3);
+        if (cheap_to_render(scene)) {
+            scene.viewer.xres = std::min(scene.viewer.xres, kPixels);
+            scene.viewer.yres = std::min(scene.viewer.yres, kPixels);
             rt::RenderOptions options;
             options.threads = 1;
-            options.max_depth = 4;
+            options.max_depth = kDepth;
             rt::render(scene, options);
         }
         outcome.read = true;
