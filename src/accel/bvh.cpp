@@ -265,8 +265,8 @@ void Builder::bin(const Range& range, Binned& binned) {
     const BinPlan plan = binned.plan;  // a copy: the bins' stores cannot change it
     for (std::uint32_t i = range.begin; i < range.end; ++i) {
         const std::size_t b = plan.bin_of(refs[i]);
-        refs[i].set_bin(b);
         binned.bins[b].add(refs[i]);
+        refs[i].set_bin(b);  // after the add's loads: see put() in partition()
     }
 }
 
@@ -332,8 +332,10 @@ void Builder::partition(const Range& range, const Binned& binned, const SahSplit
     const auto put = [](const BinPlan& plan, Bin* bins, Reference& r) {
         if (plan.count == 0) return;
         const std::size_t b = plan.bin_of(r);
-        r.set_bin(b);
+        // The add first: a 4-byte store into the box followed by a 16-byte load of it
+        // cannot be forwarded from the store buffer, and that stall was a third of the build.
         bins[b].add(r);
+        r.set_bin(b);
     };
     Bin* const first_bins = children.first_bins.bins;
     Bin* const second_bins = children.second_bins.bins;
@@ -442,13 +444,12 @@ BoxRay::BoxRay(const Ray& ray) {
     }
 }
 
-// Collapses the binary tree below an interior node into wide nodes, depth first: the node's
-// two children, then repeatedly the interior child of largest surface area opened into its
-// two, until there are four or only leaves. Returns the wide node's index.
-std::uint32_t Bvh::collapse_below(std::uint32_t binary) {
-    const auto index = static_cast<std::uint32_t>(wide_.size());
-    wide_.emplace_back();
-    std::uint32_t children[WideNode::kWidth] = {binary + 1, nodes_[binary].offset};
+// The children a wide node takes in place of an interior binary node: the node's two
+// children, then repeatedly the interior child of largest surface area opened into its two,
+// until there are four or only leaves. Returns how many.
+int Bvh::wide_children(std::uint32_t binary, std::uint32_t (&children)[WideNode::kWidth]) const {
+    children[0] = binary + 1;
+    children[1] = nodes_[binary].offset;
     int size = 2;
     auto half_area = [&](std::uint32_t n) {
         const float* b = nodes_[n].bound;
@@ -473,6 +474,25 @@ std::uint32_t Bvh::collapse_below(std::uint32_t binary) {
         children[widest] = opened + 1;
         children[size++] = nodes_[opened].offset;
     }
+    return size;
+}
+
+std::size_t Bvh::wide_count_below(std::uint32_t binary) const {
+    std::uint32_t children[WideNode::kWidth];
+    const int size = wide_children(binary, children);
+    std::size_t count = 1;
+    for (int i = 0; i < size; ++i)
+        if (!nodes_[children[i]].is_leaf()) count += wide_count_below(children[i]);
+    return count;
+}
+
+// Collapses the binary tree below an interior node into wide nodes, depth first. Returns the
+// wide node's index.
+std::uint32_t Bvh::collapse_below(std::uint32_t binary) {
+    const auto index = static_cast<std::uint32_t>(wide_.size());
+    wide_.emplace_back();
+    std::uint32_t children[WideNode::kWidth];
+    const int size = wide_children(binary, children);
     WideNode node{};
     for (int row = 0; row < 3; ++row)
         for (float& v : node.box[row]) v = HUGE_VALF;
@@ -500,6 +520,9 @@ std::uint32_t Bvh::collapse_below(std::uint32_t binary) {
 void Bvh::collapse() {
     if (nodes_.empty()) return;
     if (!nodes_[0].is_leaf()) {
+        // Counted first, so that the nodes are written once into an array of their size (a
+        // growing one would copy them each time it doubled, and touch twice the memory).
+        wide_.reserve(wide_count_below(0));
         collapse_below(0);
     } else {
         // A tree that is one leaf: a wide node with that leaf as its only child.
@@ -512,7 +535,6 @@ void Bvh::collapse() {
         node.size = 1;
         wide_.push_back(node);
     }
-    wide_.shrink_to_fit();
 }
 
 Bvh::Bvh(std::span<const Bounds> boxes, int threads) {
@@ -521,11 +543,11 @@ Bvh::Bvh(std::span<const Bounds> boxes, int threads) {
     refs.reserve(boxes.size());
     for (std::uint32_t i = 0; i < boxes.size(); ++i) refs.push_back(make_reference(boxes[i], i));
     // A binary tree with n leaves has 2n - 1 nodes; reserving them keeps the build from
-    // reallocating (pages never touched cost no memory), and the fit afterwards trims it.
+    // reallocating, and pages never touched cost no memory. The array is not trimmed after:
+    // that would copy it, and its owners free it once it is collapsed (drop_binary_nodes).
     nodes_.reserve(2 * boxes.size() - 1);
     Builder builder(refs, nodes_);
     builder.build(builder.whole(), nullptr, 0, threads);
-    nodes_.shrink_to_fit();
     collapse();
     order_.reserve(refs.size());
     for (const Reference& r : refs) order_.push_back(r.index());

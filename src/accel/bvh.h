@@ -190,6 +190,8 @@ class Bvh {
     static constexpr int kStackSize = 3 * (kMaxSahDepth + 40) + 4;
 
     void collapse();
+    int wide_children(std::uint32_t binary, std::uint32_t (&children)[WideNode::kWidth]) const;
+    std::size_t wide_count_below(std::uint32_t binary) const;
     std::uint32_t collapse_below(std::uint32_t binary);
 
     // Nearest: children entered are taken nearest first (for closest); otherwise in any order

@@ -46,14 +46,27 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
     }
     bvh_ = Bvh(boxes, threads);
     bvh_.drop_binary_nodes();
+    // Leaf order visits the objects in no order of the file's, so both loops below gather
+    // from all over memory; asking for what is kAhead places on keeps them from waiting for
+    // each load in turn (a million spheres: they took a tenth of the build).
+    constexpr std::size_t kAhead = 16;
+    const std::vector<std::uint32_t> order = bvh_.take_order();
     entries_.reserve(objects.size());
-    for (const std::uint32_t i : bvh_.take_order()) entries_.push_back(bounded[i]);
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        if (i + kAhead < order.size()) __builtin_prefetch(&bounded[order[i + kAhead]]);
+        entries_.push_back(bounded[order[i]]);
+    }
     bounded_count_ = entries_.size();
     if (std::any_of(entries_.begin(), entries_.end(), [](const Entry& e) { return e.sphere; }))
         spheres_.resize(bounded_count_);
-    for (std::size_t i = 0; i < bounded_count_; ++i)
+    for (std::size_t i = 0; i < bounded_count_; ++i) {
+        if (i + kAhead < bounded_count_ && entries_[i + kAhead].sphere) {
+            __builtin_prefetch(&objects[entries_[i + kAhead].object].shape);
+            __builtin_prefetch(entries_[i + kAhead].data);
+        }
         if (entries_[i].sphere)
             spheres_[i] = objects[entries_[i].object].shape.functions->sphere(entries_[i].data);
+    }
     entries_.insert(entries_.end(), unbounded.begin(), unbounded.end());
 }
 
