@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cfloat>
 #include <cmath>
@@ -181,16 +182,18 @@ static_assert(std::is_trivially_destructible_v<Bin>);
 
 class Builder {
   public:
-    Builder(std::vector<Reference>& refs, std::vector<BvhNode>& nodes)
-        : refs_(refs), nodes_(nodes) {}
+    // `spare` counts the threads that may still be started (shared by every builder of one
+    // tree, and lent back by a thread while it waits for another).
+    Builder(std::vector<Reference>& refs, std::vector<BvhNode>& nodes, std::atomic<int>& spare)
+        : refs_(refs), nodes_(nodes), spare_(spare) {}
 
     Range whole() const { return measured(0, static_cast<std::uint32_t>(refs_.size())); }
-    // Writes the subtree over the range into nodes_, depth first, using up to `threads`
-    // threads: a second thread builds a large node's second child into nodes of its own,
-    // appended afterwards, so the array is the same however many threads built it. `binned`,
-    // when given, is the range already in the bins of its plan (its parent's partition put
-    // them there), so that each level reads the references once, not twice.
-    void build(const Range& range, const Binned* binned, int depth, int threads);
+    // Writes the subtree over the range into nodes_, depth first. Where a spare thread is
+    // free, it builds a large node's second child into nodes of its own, appended
+    // afterwards, so the array is the same however many threads built it, and whichever
+    // did. `binned`, when given, is the range already in the bins of its plan (its parent's
+    // partition put them there), so that each level reads the references once, not twice.
+    void build(const Range& range, const Binned* binned, int depth);
 
   private:
     struct SahSplit {
@@ -217,11 +220,21 @@ class Builder {
     std::pair<Range, Range> median_split(const Range& range, int axis);
     void make_leaf(std::size_t node, const Range& range);
     void build_children(std::size_t node, const Range& first, const Binned* first_bins,
-                        const Range& second, const Binned* second_bins, int depth, int threads);
+                        const Range& second, const Binned* second_bins, int depth);
+    // Takes a spare thread if there is one.
+    bool take_spare();
 
     std::vector<Reference>& refs_;
     std::vector<BvhNode>& nodes_;
+    std::atomic<int>& spare_;
 };
+
+bool Builder::take_spare() {
+    int n = spare_.load();
+    while (n > 0 && !spare_.compare_exchange_weak(n, n - 1)) {
+    }
+    return n > 0;
+}
 
 Range Builder::measured(std::uint32_t begin, std::uint32_t end) const {
     Range r{begin, end, {}, {}};
@@ -353,12 +366,11 @@ void Builder::partition(const Range& range, const Binned& binned, const SahSplit
 }
 
 void Builder::build_children(std::size_t node, const Range& first, const Binned* first_bins,
-                             const Range& second, const Binned* second_bins, int depth,
-                             int threads) {
-    if (threads < 2 || second.count() < kParallelBuildMinimum) {
-        build(first, first_bins, depth + 1, threads);
+                             const Range& second, const Binned* second_bins, int depth) {
+    if (second.count() < kParallelBuildMinimum || !take_spare()) {
+        build(first, first_bins, depth + 1);
         nodes_[node].offset = static_cast<std::uint32_t>(nodes_.size());
-        build(second, second_bins, depth + 1, threads);
+        build(second, second_bins, depth + 1);
         return;
     }
     // The two children's references are disjoint ranges of refs_, so they can be
@@ -369,12 +381,18 @@ void Builder::build_children(std::size_t node, const Range& first, const Binned*
     {
         std::jthread helper([&] {
             try {
-                Builder(refs_, second_nodes).build(second, second_bins, depth + 1, threads / 2);
+                Builder(refs_, second_nodes, spare_).build(second, second_bins, depth + 1);
             } catch (...) {
                 failure = std::current_exception();
             }
+            ++spare_;
         });
-        build(first, first_bins, depth + 1, threads - threads / 2);
+        build(first, first_bins, depth + 1);
+        // While this thread waits, the helper (or a thread it starts) may use it: a split
+        // that is far from even then keeps both cores busy.
+        ++spare_;
+        helper.join();
+        --spare_;
     }
     if (failure) std::rethrow_exception(failure);
     const auto base = static_cast<std::uint32_t>(nodes_.size());
@@ -385,7 +403,7 @@ void Builder::build_children(std::size_t node, const Range& first, const Binned*
     }
 }
 
-void Builder::build(const Range& range, const Binned* binned, int depth, int threads) {
+void Builder::build(const Range& range, const Binned* binned, int depth) {
     const std::size_t node = nodes_.size();
     nodes_.push_back({});
     for (int k = 0; k < 3; ++k) {
@@ -404,11 +422,11 @@ void Builder::build(const Range& range, const Binned* binned, int depth, int thr
         if (fits_leaf) return make_leaf(node, range);
         const std::uint32_t mid = range.begin + count / 2;
         return build_children(node, measured(range.begin, mid), nullptr, measured(mid, range.end),
-                              nullptr, depth, threads);
+                              nullptr, depth);
     }
     if (depth >= Bvh::kMaxSahDepth || !std::isfinite(extent)) {
         const auto [first, second] = median_split(range, axis);
-        return build_children(node, first, nullptr, second, nullptr, depth, threads);
+        return build_children(node, first, nullptr, second, nullptr, depth);
     }
     Binned own;
     if (binned == nullptr) {
@@ -425,24 +443,14 @@ void Builder::build(const Range& range, const Binned* binned, int depth, int thr
     if (!split.found) {
         // Every centroid in one bin, or areas beyond a double: split evenly.
         const auto [first, second] = median_split(range, axis);
-        return build_children(node, first, nullptr, second, nullptr, depth, threads);
+        return build_children(node, first, nullptr, second, nullptr, depth);
     }
     const auto pre = [](const Binned& b) { return b.plan.count > 0 ? &b : nullptr; };
     build_children(node, children.first, pre(children.first_bins), children.second,
-                   pre(children.second_bins), depth, threads);
+                   pre(children.second_bins), depth);
 }
 
 }  // namespace
-
-BoxRay::BoxRay(const Ray& ray) {
-    for (int k = 0; k < 3; ++k) {
-        origin_[k] = ray.origin[k];
-        inverse_[k] = 1 / ray.direction[k];  // +-inf for a zero component: see enters()
-        const bool negative = std::signbit(inverse_[k]);
-        near_bound_[k] = negative ? 3 + k : k;
-        far_bound_[k] = negative ? k : 3 + k;
-    }
-}
 
 // The children a wide node takes in place of an interior binary node: the node's two
 // children, then repeatedly the interior child of largest surface area opened into its two,
@@ -546,8 +554,9 @@ Bvh::Bvh(std::span<const Bounds> boxes, int threads) {
     // reallocating, and pages never touched cost no memory. The array is not trimmed after:
     // that would copy it, and its owners free it once it is collapsed (drop_binary_nodes).
     nodes_.reserve(2 * boxes.size() - 1);
-    Builder builder(refs, nodes_);
-    builder.build(builder.whole(), nullptr, 0, threads);
+    std::atomic<int> spare = std::max(threads, 1) - 1;
+    Builder builder(refs, nodes_, spare);
+    builder.build(builder.whole(), nullptr, 0);
     collapse();
     order_.reserve(refs.size());
     for (const Reference& r : refs) order_.push_back(r.index());
