@@ -20,6 +20,8 @@
 #include <thread>
 #include <type_traits>
 
+#include "accel/parallel.h"
+
 namespace rt {
 
 namespace {
@@ -85,8 +87,12 @@ struct Box {
 // box's fourth lanes hold, once it is binned, the reference's bin in its range's plan (lo),
 // which the partition then reads instead of finding it again.
 struct Reference {
-    Box box;
+    // The box's corners (Box's lanes), as plain vectors: a trivial type, so that an array of
+    // references can be allocated without being written (parallel.h).
+    Floats lo, hi;
     float centre[4];
+
+    Box box() const { return {lo, hi}; }
 
     Floats centre_lanes() const {
         Floats v;
@@ -94,25 +100,27 @@ struct Reference {
         return v;
     }
     std::uint32_t index() const { return std::bit_cast<std::uint32_t>(centre[3]); }
-    float bin() const { return box.lo[3]; }
-    void set_bin(std::size_t b) { box.lo[3] = static_cast<float>(b); }
+    float bin() const { return lo[3]; }
+    void set_bin(std::size_t b) { lo[3] = static_cast<float>(b); }
 };
 static_assert(sizeof(Reference) == 48);
+static_assert(std::is_trivially_default_constructible_v<Reference>);
+using References = std::vector<Reference, UninitializedAllocator<Reference>>;
 
 Reference make_reference(const Bounds& b, std::uint32_t index) {
     const double pad =
         kBoxPadding * (1 + std::fmax(max_abs_component(b.min), max_abs_component(b.max)));
     Reference r{};
     for (int k = 0; k < 3; ++k) {
-        r.box.lo[k] = float_below(b.min[k] - pad);
-        r.box.hi[k] = float_above(b.max[k] + pad);
+        r.lo[k] = float_below(b.min[k] - pad);
+        r.hi[k] = float_above(b.max[k] + pad);
         // Halves first: min + max can overflow where neither does.
         r.centre[k] = static_cast<float>(std::clamp(b.min[k] * 0.5 + b.max[k] * 0.5,
                                                     static_cast<double>(-FLT_MAX),
                                                     static_cast<double>(FLT_MAX)));
     }
-    r.box.lo[3] = 0;
-    r.box.hi[3] = 0;
+    r.lo[3] = 0;
+    r.hi[3] = 0;
     r.centre[3] = std::bit_cast<float>(index);
     return r;
 }
@@ -159,7 +167,7 @@ struct Bin {
 
     void add(const Reference& r) {
         ++count;
-        box.add(r.box);
+        box.add(r.box());
         centres.add_point(r.centre_lanes());
     }
 };
@@ -184,7 +192,7 @@ class Builder {
   public:
     // `spare` counts the threads that may still be started (shared by every builder of one
     // tree, and lent back by a thread while it waits for another).
-    Builder(std::vector<Reference>& refs, std::vector<BvhNode>& nodes, std::atomic<int>& spare)
+    Builder(References& refs, std::vector<BvhNode>& nodes, std::atomic<int>& spare)
         : refs_(refs), nodes_(nodes), spare_(spare) {}
 
     Range whole() const { return measured(0, static_cast<std::uint32_t>(refs_.size())); }
@@ -224,7 +232,7 @@ class Builder {
     // Takes a spare thread if there is one.
     bool take_spare();
 
-    std::vector<Reference>& refs_;
+    References& refs_;
     std::vector<BvhNode>& nodes_;
     std::atomic<int>& spare_;
 };
@@ -239,7 +247,7 @@ bool Builder::take_spare() {
 Range Builder::measured(std::uint32_t begin, std::uint32_t end) const {
     Range r{begin, end, {}, {}};
     for (std::uint32_t i = begin; i < end; ++i) {
-        r.box.add(refs_[i].box);
+        r.box.add(refs_[i].box());
         r.centres.add_point(refs_[i].centre_lanes());
     }
     return r;
@@ -547,9 +555,13 @@ void Bvh::collapse() {
 
 Bvh::Bvh(std::span<const Bounds> boxes, int threads) {
     if (boxes.empty()) return;
-    std::vector<Reference> refs;
-    refs.reserve(boxes.size());
-    for (std::uint32_t i = 0; i < boxes.size(); ++i) refs.push_back(make_reference(boxes[i], i));
+    // Below this many per thread, starting threads costs more than the loops save.
+    constexpr std::size_t kPart = 65536;
+    References refs(boxes.size());
+    parallel_parts(boxes.size(), threads, kPart, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i)
+            refs[i] = make_reference(boxes[i], static_cast<std::uint32_t>(i));
+    });
     // A binary tree with n leaves has 2n - 1 nodes; reserving them keeps the build from
     // reallocating, and pages never touched cost no memory. The array is not trimmed after:
     // that would copy it, and its owners free it once it is collapsed (drop_binary_nodes).
@@ -558,8 +570,10 @@ Bvh::Bvh(std::span<const Bounds> boxes, int threads) {
     Builder builder(refs, nodes_, spare);
     builder.build(builder.whole(), nullptr, 0);
     collapse();
-    order_.reserve(refs.size());
-    for (const Reference& r : refs) order_.push_back(r.index());
+    order_.resize(refs.size());
+    parallel_parts(refs.size(), threads, kPart, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) order_[i] = refs[i].index();
+    });
 }
 
 }  // namespace rt

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "accel/bvh.h"
+#include "accel/parallel.h"
 #include "rt/primitive.h"
 #include "rt/scene.h"
 
@@ -63,8 +64,9 @@ class ObjectIndex {
     bool blocks(std::uint32_t i, const Ray& ray, Interval range, Hit& scratch) const;
 
     Bvh bvh_;
-    // The bounded objects in leaf order, then the unbounded ones in file order.
-    std::vector<Entry> entries_;
+    // The bounded objects in leaf order, then the unbounded ones in file order. Allocated
+    // without being written first, so that the threads filling it touch its pages.
+    std::vector<Entry, UninitializedAllocator<Entry>> entries_;
     // Beside each bounded entry in leaf order, its sphere's parameters where it is a sphere
     // (unused otherwise); empty in a scene without spheres.
     std::vector<SphereParameters> spheres_;
