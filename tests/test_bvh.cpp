@@ -3,14 +3,20 @@
 // primitive type, overlapping, coincident and nested in affines, both must find the same
 // object at the same distance for every ray and render the same image on any thread count.
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
+#include <set>
 #include <sstream>
+#include <stdexcept>
+#include <thread>
 
 #include "accel/bvh.h"
 #include "accel/object_index.h"
+#include "accel/parallel.h"
 #include "memory_checks.h"  // RT_MEASURES_MEMORY: 0 under ASan
 #include "rt/render.h"
 #include "rt/trace.h"
@@ -144,6 +150,40 @@ TEST(the_same_tree_on_any_number_of_threads) {
                          one.order().end()));
     }
     if (RT_MEASURES_MEMORY) check_structure(boxes);  // smaller sets check it under ASan too
+}
+
+TEST(parallel_parts_cover_the_range_once) {
+    for (const std::size_t count : {0, 1, 999, 1000, 2500, 200003}) {
+        for (const int threads : {0, 1, 2, 3, 8}) {
+            std::vector<std::atomic<int>> visits(count);
+            std::mutex lock;
+            std::set<std::thread::id> ids;
+            std::size_t parts = 0;
+            parallel_parts(count, threads, 1000, [&](std::size_t begin, std::size_t end) {
+                for (std::size_t i = begin; i < end; ++i) ++visits[i];
+                const std::scoped_lock hold(lock);
+                ids.insert(std::this_thread::get_id());
+                ++parts;
+            });
+            CHECK(std::all_of(visits.begin(), visits.end(), [](auto& v) { return v == 1; }));
+            // One part per thread at most, none shorter than the minimum (but for one).
+            const std::size_t most = std::clamp<std::size_t>(count / 1000, 1, std::max(threads, 1));
+            CHECK_EQ(parts, most);
+            CHECK_EQ(ids.size(), parts);
+        }
+    }
+}
+
+TEST(parallel_parts_pass_a_failure_on) {
+    bool caught = false;
+    try {
+        parallel_parts(10000, 4, 1000, [](std::size_t begin, std::size_t) {
+            if (begin > 0) throw std::runtime_error("part failed");
+        });
+    } catch (const std::runtime_error& e) {
+        caught = std::string(e.what()) == "part failed";
+    }
+    CHECK(caught);
 }
 
 TEST(traversal_offers_every_box_the_ray_crosses) {
