@@ -502,13 +502,9 @@ std::size_t Bvh::wide_count_below(std::uint32_t binary) const {
     return count;
 }
 
-// Collapses the binary tree below an interior node into wide nodes, depth first. Returns the
-// wide node's index.
-std::uint32_t Bvh::collapse_below(std::uint32_t binary) {
-    const auto index = static_cast<std::uint32_t>(wide_.size());
-    wide_.emplace_back();
-    std::uint32_t children[WideNode::kWidth];
-    const int size = wide_children(binary, children);
+// The wide node over the given binary children: their boxes side by side, and for each leaf
+// its primitives; an interior child's index is left for the caller.
+WideNode Bvh::wide_node(const std::uint32_t (&children)[WideNode::kWidth], int size) const {
     WideNode node{};
     for (int row = 0; row < 3; ++row)
         for (float& v : node.box[row]) v = HUGE_VALF;
@@ -523,23 +519,55 @@ std::uint32_t Bvh::collapse_below(std::uint32_t binary) {
             node.count[i] = static_cast<std::uint8_t>(child.count);
         }
     }
-    wide_[index] = node;
-    // The interior children's nodes follow, each after the subtree before it.
-    for (int i = 0; i < size; ++i)
-        if (!nodes_[children[i]].is_leaf()) {
-            const std::uint32_t below = collapse_below(children[i]);
-            wide_[index].child[i] = below;
-        }
-    return index;
+    return node;
 }
 
-void Bvh::collapse() {
+// Writes the wide node of an interior binary node at wide_[index] and the wide nodes of its
+// interior children's subtrees after it, depth first, each after the subtree before it.
+// Returns the index after the last node written.
+std::uint32_t Bvh::collapse_into(std::uint32_t binary, std::uint32_t index) {
+    std::uint32_t children[WideNode::kWidth];
+    const int size = wide_children(binary, children);
+    WideNode node = wide_node(children, size);
+    std::uint32_t next = index + 1;
+    for (int i = 0; i < size; ++i)
+        if (!nodes_[children[i]].is_leaf()) {
+            node.child[i] = next;
+            next = collapse_into(children[i], next);
+        }
+    wide_[index] = node;
+    return next;
+}
+
+void Bvh::collapse(int threads) {
     if (nodes_.empty()) return;
     if (!nodes_[0].is_leaf()) {
-        // Counted first, so that the nodes are written once into an array of their size (a
-        // growing one would copy them each time it doubled, and touch twice the memory).
-        wide_.reserve(wide_count_below(0));
-        collapse_below(0);
+        // The root's interior children's subtrees are counted first: the array is then
+        // allocated at its size and written once (a growing one would copy itself each time
+        // it doubled), and each subtree's place is known, so that they can be written on
+        // several threads, into an array whose pages they are the first to touch.
+        std::uint32_t children[WideNode::kWidth];
+        const int size = wide_children(0, children);
+        WideNode root = wide_node(children, size);
+        std::uint32_t subtrees[WideNode::kWidth], places[WideNode::kWidth];
+        int interior = 0;
+        std::size_t total = 1;
+        for (int i = 0; i < size; ++i)
+            if (!nodes_[children[i]].is_leaf()) {
+                root.child[i] = places[interior] = static_cast<std::uint32_t>(total);
+                subtrees[interior++] = children[i];
+                total += wide_count_below(children[i]);
+            }
+        wide_.resize(total);
+        wide_[0] = root;
+        // Below this many wide nodes a thread costs more than it saves.
+        constexpr std::size_t kParallelCollapseMinimum = 16384;
+        parallel_parts(static_cast<std::size_t>(interior),
+                       total < kParallelCollapseMinimum ? 1 : threads, 1,
+                       [&](std::size_t begin, std::size_t end) {
+                           for (std::size_t k = begin; k < end; ++k)
+                               collapse_into(subtrees[k], places[k]);
+                       });
     } else {
         // A tree that is one leaf: a wide node with that leaf as its only child.
         WideNode node{};
@@ -569,7 +597,7 @@ Bvh::Bvh(std::span<const Bounds> boxes, int threads) {
     std::atomic<int> spare = std::max(threads, 1) - 1;
     Builder builder(refs, nodes_, spare);
     builder.build(builder.whole(), nullptr, 0);
-    collapse();
+    collapse(threads);
     order_.resize(refs.size());
     parallel_parts(refs.size(), threads, kPart, [&](std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i) order_[i] = refs[i].index();

@@ -11,8 +11,10 @@
 #include <cstring>
 #include <optional>
 #include <span>
+#include <type_traits>
 #include <vector>
 
+#include "accel/parallel.h"
 #include "rt/ray.h"
 
 namespace rt {
@@ -97,6 +99,7 @@ struct alignas(64) WideNode {
     bool is_leaf(int i) const { return count[i] != 0; }
 };
 static_assert(sizeof(WideNode) == 128);
+static_assert(std::is_trivially_default_constructible_v<WideNode>);
 static_assert(WideNode::kWidth == 4, "the vector code below is four lanes wide");
 
 // A ray prepared for testing the four boxes of a wide node in float. Float arithmetic only
@@ -197,10 +200,11 @@ class Bvh {
     // stack holds at most three entries per level and four more.
     static constexpr int kStackSize = 3 * (kMaxSahDepth + 40) + 4;
 
-    void collapse();
+    void collapse(int threads);
     int wide_children(std::uint32_t binary, std::uint32_t (&children)[WideNode::kWidth]) const;
+    WideNode wide_node(const std::uint32_t (&children)[WideNode::kWidth], int size) const;
     std::size_t wide_count_below(std::uint32_t binary) const;
-    std::uint32_t collapse_below(std::uint32_t binary);
+    std::uint32_t collapse_into(std::uint32_t binary, std::uint32_t index);
 
     // Nearest: children entered are taken nearest first (for closest); otherwise in any order
     // (for any, which stops at the first blocker wherever it lies).
@@ -208,7 +212,8 @@ class Bvh {
     bool walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) const;
 
     std::vector<BvhNode> nodes_;
-    std::vector<WideNode> wide_;
+    // Allocated without being written first (WideNode is trivial): see collapse().
+    std::vector<WideNode, UninitializedAllocator<WideNode>> wide_;
     std::vector<std::uint32_t> order_;
 };
 
