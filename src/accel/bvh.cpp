@@ -581,19 +581,21 @@ void Bvh::collapse(int threads) {
     }
 }
 
-Bvh::Bvh(std::span<const Bounds> boxes, int threads) {
-    if (boxes.empty()) return;
+Bvh::Bvh(std::size_t count, BoundsSource source, int threads) {
+    if (count == 0) return;
     // Below this many per thread, starting threads costs more than the loops save.
     constexpr std::size_t kPart = 65536;
-    References refs(boxes.size());
-    parallel_parts(boxes.size(), threads, kPart, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i)
-            refs[i] = make_reference(boxes[i], static_cast<std::uint32_t>(i));
+    References refs(count);
+    parallel_parts(count, threads, kPart, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            const auto index = static_cast<std::uint32_t>(i);
+            refs[i] = make_reference(source.bounds(source.context, index), index);
+        }
     });
     // A binary tree with n leaves has 2n - 1 nodes; reserving them keeps the build from
     // reallocating, and pages never touched cost no memory. The array is not trimmed after:
     // that would copy it, and its owners free it once it is collapsed (drop_binary_nodes).
-    nodes_.reserve(2 * boxes.size() - 1);
+    nodes_.reserve(2 * count - 1);
     std::atomic<int> spare = std::max(threads, 1) - 1;
     Builder builder(refs, nodes_, spare);
     builder.build(builder.whole(), nullptr, 0);

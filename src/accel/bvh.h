@@ -154,11 +154,26 @@ class Bvh {
     // offer every primitive whose box the ray crosses.
     enum class BoxTest { simd, scalar, exact };
 
+    // Where a build finds primitive i's box: a function and what it needs.
+    struct BoundsSource {
+        const void* context;
+        Bounds (*bounds)(const void* context, std::uint32_t i);
+    };
+
     Bvh() = default;
     // Builds over the given boxes, which must be finite, with binned SAH splits, on up to
     // `threads` threads (the result is the same for any number). Primitive i is the one with
     // boxes[i]; order() lists them as the leaves hold them.
-    explicit Bvh(std::span<const Bounds> boxes, int threads = 1);
+    explicit Bvh(std::span<const Bounds> boxes, int threads = 1)
+        : Bvh(boxes.size(),
+              {&boxes,
+               [](const void* context, std::uint32_t i) {
+                   return (*static_cast<const std::span<const Bounds>*>(context))[i];
+               }},
+              threads) {}
+    // The same over `count` primitives whose boxes the source gives (each asked once, from
+    // any of the threads).
+    Bvh(std::size_t count, BoundsSource source, int threads = 1);
 
     // The binary tree the build made, and the wide tree traversal walks.
     std::span<const BvhNode> nodes() const { return nodes_; }

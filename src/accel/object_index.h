@@ -59,6 +59,7 @@ class ObjectIndex {
         bool sphere;
     };
 
+    static Entry entry(const Object& object, std::uint32_t index);
     // Whether entry i is hit in range (hit as intersect leaves it).
     bool hits(std::uint32_t i, const Ray& ray, Interval range, Hit& hit) const;
     bool blocks(std::uint32_t i, const Ray& ray, Interval range, Hit& scratch) const;
