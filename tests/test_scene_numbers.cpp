@@ -96,18 +96,25 @@ TEST(numbers_have_the_bits_from_chars_gives) {
         text += numbers.back();
         text += random_gap(random);
     }
-    std::istringstream in(text);
-    SceneReader reader(in, "numbers.in", {});
     const std::vector<Location> places = reference_places(text);
     CHECK_EQ(places.size(), numbers.size());
-    long checked = 0, fast = 0;
+    // Each number read after a look at its place (the lexer's token), then without one (the
+    // lexer hands a plain decimal straight to the reader), alternating in runs.
+    std::istringstream in(text);
+    SceneReader reader(in, "numbers.in", {});
+    long tried = 0, fast = 0;
     for (std::size_t i = 0; i < numbers.size(); ++i) {
-        const Location where = reader.next_location();
+        const bool look = i / 7 % 2 == 0;
+        const Location where = look ? reader.next_location() : places[i];
         const double expected = reference_value(numbers[i]);
         double value = 0;
         bool was_plain = false;
         if (std::isfinite(expected)) {
-            was_plain = reader.plain_number(value);
+            // plain_number first, as meshes ask, or number() alone.
+            if (i % 3 != 2) {
+                was_plain = reader.plain_number(value);
+                ++tried;
+            }
             if (!was_plain) value = reader.number("number");
             if (std::bit_cast<std::uint64_t>(value) != std::bit_cast<std::uint64_t>(expected))
                 CHECK_EQ(join(numbers[i], " read as ", value), join(numbers[i], " is ", expected));
@@ -120,14 +127,14 @@ TEST(numbers_have_the_bits_from_chars_gives) {
         if (where.line != places[i].line || where.column != places[i].column)
             CHECK_EQ(join(where.line, ':', where.column),
                      join(places[i].line, ':', places[i].column));
-        CHECK_EQ(reader.last_number_location().line, where.line);
+        CHECK_EQ(reader.last_number_location().line, places[i].line);
+        CHECK_EQ(reader.last_number_location().column, places[i].column);
         CHECK_EQ(reader.last_number_text(), show_token(numbers[i]));
-        ++checked;
         fast += was_plain ? 1 : 0;
     }
     // Most numbers take the fast path, and some do not.
-    CHECK(fast > checked / 2);
-    CHECK(fast < checked);
+    CHECK(fast > tried / 2);
+    CHECK(fast < tried);
 }
 
 TEST(numbers_at_the_edges_of_the_fast_path) {
@@ -199,4 +206,60 @@ TEST(tokens_keep_their_places_across_chunks) {
         if (seen[i].line != places[i].line || seen[i].column != places[i].column)
             CHECK_EQ(join(i, ": ", seen[i].line, ':', seen[i].column),
                      join(i, ": ", places[i].line, ':', places[i].column));
+}
+
+TEST(numbers_at_the_ends_of_chunks) {
+    // The same kind of text shifted by 0 to 23 bytes, so that numbers end just before, at and
+    // after the lexer's 64 KiB chunk ends, read with and without a look at their place first;
+    // and a short last chunk, after whose end the buffer still holds the digits of the chunk
+    // before (they must not join the last number).
+    constexpr std::size_t kChunk = 64 * 1024;
+    for (std::size_t shift = 0; shift < 24; ++shift) {
+        for (const bool look : {false, true}) {
+            std::string text(shift, ' ');
+            std::vector<std::string> numbers;
+            std::mt19937_64 random(shift);
+            while (text.size() < 2 * kChunk + 40) {
+                numbers.push_back(random_number(random));
+                text += numbers.back();
+                text += shift % 3 == 0 ? "\n" : " ";
+            }
+            // The last chunk: a few bytes, a number without a newline after it.
+            numbers.push_back(shift % 2 == 0 ? "-7" : "0.25");
+            text += numbers.back();
+            std::istringstream in(text);
+            SceneReader reader(in, "ends.in", {});
+            const std::vector<Location> places = reference_places(text);
+            CHECK_EQ(places.size(), numbers.size());
+            for (std::size_t i = 0; i < numbers.size() && i < places.size(); ++i) {
+                const double expected = reference_value(numbers[i]);
+                if (!std::isfinite(expected)) {
+                    CHECK_ERROR(
+                        reader.number("number"),
+                        join("ends.in:", places[i].line, ':', places[i].column,
+                             ": number must be a finite number, got ", quote_token(numbers[i])));
+                    continue;
+                }
+                if (look) {
+                    const Location where = reader.next_location();
+                    CHECK_EQ(join(where.line, ':', where.column),
+                             join(places[i].line, ':', places[i].column));
+                }
+                const double value = reader.number("number");
+                if (std::bit_cast<std::uint64_t>(value) != std::bit_cast<std::uint64_t>(expected))
+                    CHECK_EQ(join(numbers[i], " read as ", value),
+                             join(numbers[i], " is ", expected));
+                const Location at = reader.last_number_location();
+                if (at.line != places[i].line || at.column != places[i].column)
+                    CHECK_EQ(join(i, ": ", at.line, ':', at.column),
+                             join(i, ": ", places[i].line, ':', places[i].column));
+                CHECK_EQ(reader.last_number_text(), show_token(numbers[i]));
+            }
+            CHECK_ERROR(
+                reader.number("number"),
+                join("ends.in:", places.back().line, ':',
+                     places.back().column + static_cast<std::int64_t>(numbers.back().size()),
+                     ": unexpected end of file: expected number"));
+        }
+    }
 }

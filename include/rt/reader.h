@@ -153,6 +153,7 @@ class SceneReader {
                                         Location last_number) const;
 
     long id(std::string_view what);
+    double written_number(std::string_view what);  // number() for a token not plain_number's
     void read_top_level_object(Scene& scene, bool& have_viewer);
     Viewer read_viewer();
 

@@ -5,7 +5,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
 #include <limits>
 
 #include "rt/error.h"
@@ -56,22 +55,27 @@ SceneReader::Nest::Nest(SceneReader& reader, Location where) : reader_(reader) {
 }
 
 bool SceneReader::plain_number(double& value) {
-    const Token& token = lexer_->peek();
-    if (!token.decimal) return false;
-    value = token.value;
-    lexer_->next();
-    ++numbers_read_;
-    last_number_ = token.where;
     // A plain decimal is short: its text is kept in a small buffer, without the string's calls.
-    static_assert(sizeof last_plain_text_ >= kMaxDecimalLength);
-    last_plain_size_ = static_cast<unsigned char>(token.text.size());
-    std::memcpy(last_plain_text_, token.text.data(), token.text.size());
+    static_assert(sizeof last_plain_text_ == kDecimalReadable);
+    if (!lexer_->next_decimal(value, last_number_, last_plain_text_, last_plain_size_))
+        return false;
+    ++numbers_read_;
     return true;
 }
 
 double SceneReader::number(std::string_view what) {
+    // plain_number, spelled out so that the lexer's common case compiles into this function.
     double value = 0;
-    if (plain_number(value)) return value;
+    if (lexer_->next_decimal(value, last_number_, last_plain_text_, last_plain_size_)) {
+        ++numbers_read_;
+        return value;
+    }
+    return written_number(what);
+}
+
+// Any other token, out of line so that number() stays small.
+[[gnu::noinline]] double SceneReader::written_number(std::string_view what) {
+    double value = 0;
     const Token& token = lexer_->next();
     if (token.at_end()) fail(token.where, "unexpected end of file: expected " + std::string(what));
     ++numbers_read_;
