@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "accel/parallel.h"
 #include "rt/reader.h"
 
 namespace rt::mesh_core {
@@ -40,17 +39,12 @@ void finish(Core& core, std::vector<Triangle>& triangles, std::vector<Bounds>& b
     core.bvh = Bvh(boxes, threads);
     core.bvh.drop_binary_nodes();
     boxes = {};
-    // Gathered in leaf order, each thread filling its own part (the same arrays for any
-    // number of threads).
-    const std::vector<std::uint32_t> order = core.bvh.take_order();
-    core.triangles.resize(order.size());
-    core.packed.resize(order.size());
-    parallel_parts(order.size(), threads, 65536, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i) {
-            const Triangle& t = core.triangles[i] = triangles[order[i]];
-            core.packed[i] = {{core.vertex(t, 0), core.vertex(t, 1), core.vertex(t, 2)}, t.place()};
-        }
-    });
+    core.triangles.reserve(triangles.size());
+    for (const std::uint32_t i : core.bvh.take_order()) core.triangles.push_back(triangles[i]);
+    core.packed.reserve(core.triangles.size());
+    for (const Triangle& t : core.triangles)
+        core.packed.push_back(
+            {{core.vertex(t, 0), core.vertex(t, 1), core.vertex(t, 2)}, t.place()});
 }
 
 bool closest(const Core& m, const Ray& ray, Interval range, Hit& hit) {
