@@ -141,14 +141,12 @@ Bounds bounds(const void* shape);
 }  // namespace shaded
 
 // Out of line: the part of build that does not depend on where the indices come from.
-void finish(Core& core, std::vector<Triangle>& triangles, std::vector<Bounds>& boxes, int threads);
+void finish(Core& core, std::vector<Triangle>& triangles, int threads);
 
 template <class Next>
 std::size_t build(Core& core, long triangle_count, int threads, Next&& next) {
     std::vector<Triangle> triangles;
-    std::vector<Bounds> boxes;
     triangles.reserve(static_cast<std::size_t>(std::min(triangle_count, kMaxReserve)));
-    boxes.reserve(triangles.capacity());
     std::size_t skipped = 0;
     for (long i = 0; i < triangle_count; ++i) {
         const std::array<std::uint32_t, 3> index = next(i);
@@ -166,13 +164,9 @@ std::size_t build(Core& core, long triangle_count, int threads, Next&& next) {
             t.vertex[k] = index[static_cast<std::size_t>(s.order[k])];
         t.place_and_flip = static_cast<std::uint32_t>(i) << 1 | (s.flipped ? 1 : 0);
         triangles.push_back(t);
-        Bounds box;
-        for (const Vec3* v : {&v0, &v1, &v2}) box.expand(*v);
-        boxes.push_back(box);
-        core.box.expand(box.min);
-        core.box.expand(box.max);
+        for (const Vec3* v : {&v0, &v1, &v2}) core.box.expand(*v);
     }
-    finish(core, triangles, boxes, threads);
+    finish(core, triangles, threads);
     return skipped;
 }
 
