@@ -570,14 +570,8 @@ void Bvh::collapse(int threads) {
                        });
     } else {
         // A tree that is one leaf: a wide node with that leaf as its only child.
-        WideNode node{};
-        for (int row = 0; row < 6; ++row)
-            for (float& v : node.box[row]) v = row < 3 ? HUGE_VALF : -HUGE_VALF;
-        for (int row = 0; row < 6; ++row) node.box[row][0] = nodes_[0].bound[row];
-        node.child[0] = nodes_[0].offset;
-        node.count[0] = static_cast<std::uint8_t>(nodes_[0].count);
-        node.size = 1;
-        wide_.push_back(node);
+        const std::uint32_t only[WideNode::kWidth] = {0};
+        wide_.push_back(wide_node(only, 1));
     }
 }
 

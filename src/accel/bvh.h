@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cfloat>
 #include <cmath>
@@ -97,6 +98,10 @@ struct alignas(64) WideNode {
     std::uint8_t unused[11];     // zero: no padding of undefined value, so nodes compare bytewise
 
     bool is_leaf(int i) const { return count[i] != 0; }
+    // Child i's box laid out as a binary node's (min x, y, z, then max), for the double test.
+    std::array<float, 6> bound(int i) const {
+        return {box[0][i], box[1][i], box[2][i], box[3][i], box[4][i], box[5][i]};
+    }
 };
 static_assert(sizeof(WideNode) == 128);
 static_assert(std::is_trivially_default_constructible_v<WideNode>);
@@ -249,10 +254,9 @@ bool Bvh::walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) c
         const WideNode& node = wide_[0];
         const BoxRay box_ray(ray);
         for (int i = 0; i < node.size; ++i) {
-            const float bound[6] = {node.box[0][i], node.box[1][i], node.box[2][i],
-                                    node.box[3][i], node.box[4][i], node.box[5][i]};
             double t_enter = 0;
-            if (box_ray.enters(bound, t_min, t_max, t_enter) && leaf(node.child[i], node.count[i]))
+            if (box_ray.enters(node.bound(i).data(), t_min, t_max, t_enter) &&
+                leaf(node.child[i], node.count[i]))
                 return true;
         }
         return false;
@@ -279,10 +283,8 @@ bool Bvh::walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) c
         unsigned lanes = 0;
         if (exact) {
             for (int i = 0; i < node.size; ++i) {
-                const float bound[6] = {node.box[0][i], node.box[1][i], node.box[2][i],
-                                        node.box[3][i], node.box[4][i], node.box[5][i]};
                 double t = 0;
-                if (!box_ray->enters(bound, t_min, t_max, t)) continue;
+                if (!box_ray->enters(node.bound(i).data(), t_min, t_max, t)) continue;
                 lanes |= 1u << i;
                 // Rounded down, so that the pruning below never drops what the test kept.
                 const auto f = static_cast<float>(std::clamp(t, -3e38, 3e38));
