@@ -1,4 +1,6 @@
+#include <chrono>
 #include <exception>
+#include <iomanip>
 
 #include "check.h"
 
@@ -32,6 +34,7 @@ int main(int argc, char** argv) {
     int failed_tests = 0;
     for (const rt_test::TestCase& test : rt_test::registry()) {
         const int before = rt_test::failure_count();
+        const auto start = std::chrono::steady_clock::now();
         try {
             test.body();
         } catch (const std::exception& e) {
@@ -39,7 +42,12 @@ int main(int argc, char** argv) {
         }
         const bool passed = rt_test::failure_count() == before;
         if (!passed) ++failed_tests;
-        std::cout << (passed ? "[ ok ] " : "[FAIL] ") << test.name << "\n";
+        // The time of the slow ones, so that a test that grows past its share of CI shows.
+        const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
+        std::cout << (passed ? "[ ok ] " : "[FAIL] ") << test.name;
+        if (took.count() >= 0.5)
+            std::cout << " (" << std::fixed << std::setprecision(1) << took.count() << " s)";
+        std::cout << "\n";
     }
     const auto total = rt_test::registry().size();
     std::cout << total - static_cast<std::size_t>(failed_tests) << " passed, " << failed_tests
