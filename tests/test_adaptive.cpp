@@ -122,8 +122,9 @@ TEST(a_flat_image_traces_one_primary_ray_per_pixel) {
 TEST(values_are_compared_clamped_as_they_are_written) {
     // Sky 2 and a sphere of 1.6 (ambient 2 x kd 0.8): different values, the same white when
     // written, so nothing is supersampled even at threshold 0.
-    const Scene scene = parse_scene(std::string(kTestViewer) + "103 2 2 2\n" +
-                                    "1 1  0 0 0  100 1 1 1 0 1 0.8 0 1\n");
+    std::string text = kTestViewer;
+    text += "103 2 2 2\n1 1  0 0 0  100 1 1 1 0 1 0.8 0 1\n";
+    const Scene scene = parse_scene(text);
     RenderStats stats;
     render_with(scene, 3, 0.0, 2, &stats);
     CHECK_EQ(stats.primary_rays, pixel_count(scene));

@@ -105,8 +105,9 @@ TEST(every_render_mode_goes_through_the_hook) {
 
 TEST(a_backend_needs_no_hierarchy) {
     // A scene whose index was never built: rt's own tracer refuses it, a backend answers.
-    Scene scene = rt_test::parse_scene(std::string(rt_test::kTestViewer) +
-                                       "104  0 0 5  1 1 1\n1  1  0 0 0  100  0.9 0.3 0.2  0.3 40  0.8  0 1\n");
+    std::string text = rt_test::kTestViewer;
+    text += "104  0 0 5  1 1 1\n1  1  0 0 0  100  0.9 0.3 0.2  0.3 40  0.8  0 1\n";
+    Scene scene = rt_test::parse_scene(text);
     scene.index.reset();
     RenderOptions options;
     bool refused = false;
