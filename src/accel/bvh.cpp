@@ -28,8 +28,6 @@ namespace {
 
 // Bin boundaries per split. More bins find slightly better splits and cost build time.
 constexpr int kBins = 16;
-// The cost of visiting a node, relative to testing one primitive.
-constexpr double kTraversalCost = 2.0;
 // Boxes are widened by this much relative to their coordinates, so that a hit point a
 // primitive computes a rounding error outside its exact bounds still lies in its node.
 constexpr double kBoxPadding = 1e-9;
@@ -192,8 +190,10 @@ class Builder {
   public:
     // `spare` counts the threads that may still be started (shared by every builder of one
     // tree, and lent back by a thread while it waits for another).
-    Builder(References& refs, std::vector<BvhNode>& nodes, std::atomic<int>& spare)
-        : refs_(refs), nodes_(nodes), spare_(spare) {}
+    // `node_cost`: visiting a node, relative to testing one primitive (Bvh's constructor).
+    Builder(References& refs, std::vector<BvhNode>& nodes, std::atomic<int>& spare,
+            double node_cost)
+        : refs_(refs), nodes_(nodes), spare_(spare), node_cost_(node_cost) {}
 
     Range whole() const { return measured(0, static_cast<std::uint32_t>(refs_.size())); }
     // Writes the subtree over the range into nodes_, depth first. Where a spare thread is
@@ -217,7 +217,7 @@ class Builder {
     // The plan of a range at a depth: none (count 0) where build() splits it otherwise.
     static BinPlan plan_for(const Range& range, int depth);
     void bin(const Range& range, Binned& binned);
-    static SahSplit best_split(const Range& range, const Binned& binned);
+    SahSplit best_split(const Range& range, const Binned& binned) const;
     // Moves the references of the bins up to split.last_first to the front of the range,
     // putting each in its child's bins on the way; the children's boxes come from the bins.
     void partition(const Range& range, const Binned& binned, const SahSplit& split, int depth,
@@ -235,6 +235,7 @@ class Builder {
     References& refs_;
     std::vector<BvhNode>& nodes_;
     std::atomic<int>& spare_;
+    double node_cost_;
 };
 
 bool Builder::take_spare() {
@@ -291,7 +292,7 @@ void Builder::bin(const Range& range, Binned& binned) {
     }
 }
 
-Builder::SahSplit Builder::best_split(const Range& range, const Binned& binned) {
+Builder::SahSplit Builder::best_split(const Range& range, const Binned& binned) const {
     const std::size_t bin_count = binned.plan.count;
     const Bin* const bins = binned.bins;
     // Sweep from the right for the boxes above each boundary, then from the left: the cost of
@@ -317,7 +318,7 @@ Builder::SahSplit Builder::best_split(const Range& range, const Binned& binned) 
             best.last_first = s;
         }
     }
-    best.cost = kTraversalCost + best.cost / range.box.half_area();
+    best.cost = node_cost_ + best.cost / range.box.half_area();
     best.found = std::isfinite(best.cost);
     return best;
 }
@@ -389,7 +390,8 @@ void Builder::build_children(std::size_t node, const Range& first, const Binned*
     {
         std::jthread helper([&] {
             try {
-                Builder(refs_, second_nodes, spare_).build(second, second_bins, depth + 1);
+                Builder(refs_, second_nodes, spare_, node_cost_)
+                    .build(second, second_bins, depth + 1);
             } catch (...) {
                 failure = std::current_exception();
             }
@@ -575,7 +577,7 @@ void Bvh::collapse(int threads) {
     }
 }
 
-Bvh::Bvh(std::size_t count, BoundsSource source, int threads) {
+Bvh::Bvh(std::size_t count, BoundsSource source, int threads, double node_cost) {
     if (count == 0) return;
     // Below this many per thread, starting threads costs more than the loops save.
     constexpr std::size_t kPart = 65536;
@@ -591,7 +593,7 @@ Bvh::Bvh(std::size_t count, BoundsSource source, int threads) {
     // that would copy it, and its owners free it once it is collapsed (drop_binary_nodes).
     nodes_.reserve(2 * count - 1);
     std::atomic<int> spare = std::max(threads, 1) - 1;
-    Builder builder(refs, nodes_, spare);
+    Builder builder(refs, nodes_, spare, node_cost);
     builder.build(builder.whole(), nullptr, 0);
     collapse(threads);
     order_.resize(refs.size());

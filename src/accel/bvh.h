@@ -153,6 +153,13 @@ class Bvh {
     // Deeper than this, nodes split at the median of their primitives, so traversal's
     // fixed stack can never overflow (see kStackSize).
     static constexpr int kMaxSahDepth = 48;
+    // The SAH's cost of visiting a node, relative to testing one primitive. Over primitives
+    // tested inline from packed leaves (a mesh's triangles) a test is cheap beside a node;
+    // over a scene's objects (a call through the table and a primitive's whole test, a
+    // cylinder's or a polygon's) it costs about what a node does, and smaller leaves pay:
+    // lattice-30's render took 0.83 of the time with 1 instead of 2 (bench/README.md).
+    static constexpr double kPackedNodeCost = 2.0;
+    static constexpr double kObjectNodeCost = 1.0;
 
     // How traversal tests a wide node's boxes: in float with vector code (the default), in
     // float lane by lane, or in double (what a ray unusable in float always gets). All three
@@ -177,8 +184,10 @@ class Bvh {
                }},
               threads) {}
     // The same over `count` primitives whose boxes the source gives (each asked once, from
-    // any of the threads).
-    Bvh(std::size_t count, BoundsSource source, int threads = 1);
+    // any of the threads). `node_cost` is what the SAH takes visiting a node to cost,
+    // relative to testing one primitive: the higher, the larger the leaves.
+    Bvh(std::size_t count, BoundsSource source, int threads = 1,
+        double node_cost = kPackedNodeCost);
 
     // The binary tree the build made, and the wide tree traversal walks.
     std::span<const BvhNode> nodes() const { return nodes_; }

@@ -61,7 +61,7 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
                     const auto& s = *static_cast<const Source*>(context);
                     return s.objects[s.bounded[i]].shape.bounds();
                 }},
-               threads);
+               threads, Bvh::kObjectNodeCost);
     bvh_.drop_binary_nodes();
     // Leaf order follows space, not the file. Reading the objects in leaf order would load
     // from all over memory, one object and then its parameters at a time (a million
