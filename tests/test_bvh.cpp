@@ -127,6 +127,45 @@ TEST(structure_with_extreme_sizes) {
     check_structure(boxes);
 }
 
+TEST(a_cheaper_node_splits_the_same_leaves_further) {
+    // The node cost only decides between a leaf and its best split, never which split: so
+    // the tree built with the scene's cost refines the one built with a mesh's. Each of the
+    // latter's leaves holds the same primitives as a run of the former's, and there are
+    // more of those.
+    Random random(4);
+    const std::vector<Bounds> boxes = random_boxes(random, 5000, 10, 1);
+    const Bvh::BoundsSource source{
+        &boxes, [](const void* context, std::uint32_t i) {
+            return (*static_cast<const std::vector<Bounds>*>(context))[i];
+        }};
+    const Bvh packed(boxes.size(), source, 1, Bvh::kPackedNodeCost);
+    const Bvh objects(boxes.size(), source, 1, Bvh::kObjectNodeCost);
+    auto leaf_starts = [](const Bvh& bvh) {
+        std::vector<std::uint32_t> starts;
+        for (const BvhNode& node : bvh.nodes())
+            if (node.is_leaf()) starts.push_back(node.offset);
+        std::sort(starts.begin(), starts.end());
+        return starts;
+    };
+    const std::vector<std::uint32_t> coarse = leaf_starts(packed), fine = leaf_starts(objects);
+    CHECK(fine.size() > coarse.size());
+    CHECK(std::includes(fine.begin(), fine.end(), coarse.begin(), coarse.end()));
+    for (std::size_t k = 0; k < coarse.size(); ++k) {
+        const std::uint32_t begin = coarse[k];
+        const auto end =
+            static_cast<std::uint32_t>(k + 1 < coarse.size() ? coarse[k + 1] : boxes.size());
+        std::vector<std::uint32_t> a(packed.order().begin() + begin, packed.order().begin() + end);
+        std::vector<std::uint32_t> b(objects.order().begin() + begin,
+                                     objects.order().begin() + end);
+        std::sort(a.begin(), a.end());
+        std::sort(b.begin(), b.end());
+        if (a != b) {
+            record_failure(__FILE__, __LINE__, "leaf at " + std::to_string(begin) + " differs");
+            break;
+        }
+    }
+}
+
 TEST(the_same_tree_on_any_number_of_threads) {
     // Enough boxes that the build hands subtrees to helper threads two levels down (a helper
     // takes a child of at least 50,000), with some coincident centres and some flat boxes.

@@ -157,7 +157,8 @@ class Bvh {
     // tested inline from packed leaves (a mesh's triangles) a test is cheap beside a node;
     // over a scene's objects (a call through the table and a primitive's whole test, a
     // cylinder's or a polygon's) it costs about what a node does, and smaller leaves pay:
-    // lattice-30's render took 0.83 of the time with 1 instead of 2 (bench/README.md).
+    // lattice-30's render took 0.84 of the time with 1 instead of 2 (docs/performance.md,
+    // "The SAH's node cost").
     static constexpr double kPackedNodeCost = 2.0;
     static constexpr double kObjectNodeCost = 1.0;
 
