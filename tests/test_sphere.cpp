@@ -1,6 +1,7 @@
 // Sphere (ID 1) against the closed form: the geometric solution of the ray-sphere problem.
 #include <cmath>
 
+#include "primitives/sphere_test.h"
 #include "random_rays.h"
 #include "scene_util.h"
 
@@ -27,6 +28,87 @@ TEST(random_rays_match_closed_form) {
     CHECK(counts.hits > 5000);
     CHECK(counts.misses > 5000);
     CHECK(inside > 100);
+}
+
+// The early decision (quadratic_surely_out_of_range) must never drop a sphere the quadratic's
+// roots would keep: on spheres from 2^-20 to 2^20 in radius, far and near, rays from inside,
+// outside, on the surface and grazing, and ranges whose ends lie on the computed roots, a
+// few doubles either side of them, where rounding would show, and a relative 1e-9 and 1e-13
+// short of the nearer.
+TEST(an_early_decision_never_drops_a_crossing) {
+    Random random(77);
+    int decided = 0, behind = 0, beyond = 0;
+    for (int i = 0; i < 40000; ++i) {
+        const double scale = std::ldexp(1.0, static_cast<int>(random.uniform(-20, 20)));
+        const double r = scale * random.uniform(0.01, 1);
+        const Vec3 centre = random.in_box(scale * (i % 4 == 0 ? 1e4 : 3));
+        const Vec3 direction = random.unit_vector();
+        Vec3 origin = centre + random.in_box(r * (i % 3 == 0 ? 0.7 : 4));
+        if (i % 5 == 0) origin = centre + random.unit_vector() * r;  // on the surface
+        if (i % 7 == 0) {  // grazing: the ray passes the centre at about the radius
+            const Vec3 side = normalized(cross(direction, random.unit_vector()));
+            origin = centre + side * (r * random.uniform(0.999999, 1.000001)) -
+                     direction * (r * random.uniform(-3, 3));
+        }
+        const Ray ray{origin, direction};
+        const SphereQuadratic k = sphere_quadratic({centre, r * r}, ray);
+        if (!(k.discriminant >= 0)) continue;
+        // The computed roots, then range ends on them and near them.
+        double near = 0, far = 0;
+        if (!quadratic_crossing(k, {-kInfinity, kInfinity}, near)) continue;
+        if (!quadratic_crossing(k, {near, kInfinity}, far)) far = near;
+        std::vector<double> ends{0,           1e-9 * scale,        scale * random.uniform(0, 8),
+                                 near * 0.5,  near * (1 - 1e-9),   near * (1 - 1e-13),
+                                 far * 2,     kInfinity};
+        for (const double root : {near, far}) {
+            double below = root, above = root;
+            ends.push_back(root);
+            for (int step = 0; step < 3; ++step) {
+                below = std::nextafter(below, -kInfinity);
+                above = std::nextafter(above, kInfinity);
+                ends.push_back(below);
+                ends.push_back(above);
+            }
+        }
+        for (const double t_min : ends) {
+            for (const double t_max : ends) {
+                if (!(t_min >= 0) || !(t_min <= t_max)) continue;
+                const Interval range{t_min, t_max};
+                double t = 0;
+                const bool crosses = quadratic_crossing(k, range, t);
+                if (!quadratic_surely_out_of_range(k, range)) continue;
+                ++decided;
+                ++(k.b > 0 ? behind : beyond);
+                CHECK(!crosses);
+                if (crosses) return;  // one report is enough
+            }
+        }
+    }
+    // Each kind of decision was taken many times.
+    CHECK(behind > 10000);
+    CHECK(beyond > 10000);
+}
+
+// The same through the sphere itself: the ray toward a unit sphere 10 away is decided early
+// only where both crossings (9 and 11) are out of range.
+TEST(a_sphere_behind_or_beyond_is_decided_without_its_roots) {
+    const SphereParameters s{{0, 0, -10}, 1};
+    const Ray toward{{0, 0, 0}, {0, 0, -1}};
+    const Ray away{{0, 0, 0}, {0, 0, 1}};
+    const SphereQuadratic k = sphere_quadratic(s, toward);
+    CHECK_EQ(k.b, -10.0);
+    CHECK(quadratic_surely_out_of_range(k, {0, 8.9}));    // both beyond
+    CHECK(!quadratic_surely_out_of_range(k, {0, 9.1}));   // 9 is in range
+    CHECK(!quadratic_surely_out_of_range(k, {0, 9}));     // 9 exactly: too close to call
+    CHECK(quadratic_surely_out_of_range(sphere_quadratic(s, away), {0, kInfinity}));  // behind
+    // Inside, the far crossing 1 away: beyond t_max = 0.5, in range up to 2.
+    const SphereQuadratic inside = sphere_quadratic(s, {{0, 0, -10}, {0, 0, -1}});
+    CHECK(!quadratic_surely_out_of_range(inside, {0, 2}));
+    double t = 0;
+    CHECK(!sphere_crossing(s, away, {0, kInfinity}, t));
+    CHECK(sphere_crossing(s, toward, {0, 9.5}, t));
+    CHECK_EQ(t, 9.0);
+    CHECK(!sphere_crossing(s, toward, {0, 8.9}, t));
 }
 
 TEST(ray_from_inside_hits_far_side) {

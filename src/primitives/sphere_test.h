@@ -10,25 +10,67 @@
 
 namespace rt {
 
-// The distance of the nearer of the ray's crossings with the sphere in range (the farther
-// where the nearer is out of it), or false when neither is in range.
-inline bool sphere_crossing(const SphereParameters& s, const Ray& ray, Interval range, double& t) {
-    // With a unit direction the quadratic is t^2 + 2bt + c = 0.
-    const Vec3 oc = ray.origin - s.centre;
-    const double b = dot(oc, ray.direction);
-    // r^2 - |oc - b d|^2 is the discriminant without the cancellation of b^2 - c when the
-    // sphere is far away and small.
-    const Vec3 perpendicular = oc - b * ray.direction;
-    const double discriminant = s.radius_squared - length_squared(perpendicular);
-    if (discriminant < 0) return false;
-    const double c = length_squared(oc) - s.radius_squared;
-    // The root of larger magnitude first, then the other as c / q: no cancellation.
-    const double q = -b - std::copysign(std::sqrt(discriminant), b);
+// The quadratic t^2 + 2bt + c = 0 of a unit-direction ray and a sphere, as sphere_crossing
+// computes it: b, the discriminant r^2 - |oc - b d|^2 (b^2 - c, without the cancellation of
+// b^2 - c when the sphere is far away and small) and c.
+struct SphereQuadratic {
+    double b;
+    double discriminant;
+    double c;
+};
+
+// The distance of the nearer of the quadratic's roots in range (the farther where the nearer
+// is out of it), or false when neither is in range: the root of larger magnitude first, then
+// the other as c / q, with no cancellation.
+inline bool quadratic_crossing(const SphereQuadratic& k, Interval range, double& t) {
+    const double q = -k.b - std::copysign(std::sqrt(k.discriminant), k.b);
     double near = q;
-    double far = q != 0 ? c / q : 0;
+    double far = q != 0 ? k.c / q : 0;
     if (near > far) std::swap(near, far);
     t = range.contains(near) ? near : far;
     return range.contains(t);
+}
+
+// True only where quadratic_crossing would return false, decided without its square root
+// and division (which are most of a crossed sphere's cost); false where that is not sure.
+// Rays of a scene of overlapping spheres mostly enter boxes of spheres that lie behind them,
+// or beyond the nearest hit found so far (docs/performance.md, "Spheres decided early").
+// Every step is a comparison that rounding cannot turn: a product's or a difference's sign
+// is trusted only with a relative margin of 2^-50, eight times a double's rounding.
+inline bool quadratic_surely_out_of_range(const SphereQuadratic& k, Interval range) {
+    if (!(range.t_min >= 0)) return false;
+    // The centre behind the origin (b > 0) and the origin outside (c > 0): the computed q is
+    // at most -b < 0, and c / q negative, so neither root is in a range above zero.
+    if (k.b > 0 && k.c > 0) return true;
+    // Both roots at or beyond t_max: the centre ahead (b < 0), the origin outside (c > 0),
+    // and sqrt(discriminant) below g = -b - t_max, so that q (-b plus the root, rounded)
+    // lies in [-b, -b + g]. Then q is beyond t_max, and so is c / q where c is at least
+    // (-b + g) t_max.
+    constexpr double kNormal = 0x1p-500;  // far from underflow: every relative bound holds
+    const double g = -k.b - range.t_max;
+    if (!(k.b < 0 && k.c > 0 && g > kNormal && range.t_max > kNormal &&
+          k.discriminant < g * g * (1 - 0x1p-48)))
+        return false;
+    const double product = (-k.b + g) * range.t_max;
+    return k.c - product > 0x1p-50 * (k.c + product);
+}
+
+// The quadratic of a ray, whose direction must be unit length, and a sphere.
+inline SphereQuadratic sphere_quadratic(const SphereParameters& s, const Ray& ray) {
+    const Vec3 oc = ray.origin - s.centre;
+    const double b = dot(oc, ray.direction);
+    const Vec3 perpendicular = oc - b * ray.direction;
+    return {b, s.radius_squared - length_squared(perpendicular),
+            length_squared(oc) - s.radius_squared};
+}
+
+// The distance of the nearer of the ray's crossings with the sphere in range (the farther
+// where the nearer is out of it), or false when neither is in range.
+inline bool sphere_crossing(const SphereParameters& s, const Ray& ray, Interval range, double& t) {
+    const SphereQuadratic quadratic = sphere_quadratic(s, ray);
+    if (quadratic.discriminant < 0) return false;
+    if (quadratic_surely_out_of_range(quadratic, range)) return false;
+    return quadratic_crossing(quadratic, range, t);
 }
 
 // The sphere's intersect (PrimitiveFunctions::intersect), for the table and the leaves alike.
