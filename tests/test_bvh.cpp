@@ -166,6 +166,14 @@ TEST(a_cheaper_node_splits_the_same_leaves_further) {
     }
 }
 
+TEST(a_scene_of_spheres_only_takes_a_meshs_node_cost) {
+    // Spheres are tested inline from the leaves, as a mesh's triangles are; any object
+    // tested through the table makes the scene's hierarchy take the object cost.
+    CHECK_EQ(Bvh::node_cost(0), Bvh::kPackedNodeCost);
+    CHECK_EQ(Bvh::node_cost(1), Bvh::kObjectNodeCost);
+    CHECK(Bvh::kObjectNodeCost < Bvh::kPackedNodeCost);
+}
+
 TEST(the_same_tree_on_any_number_of_threads) {
     // Enough boxes that the build hands subtrees to helper threads two levels down (a helper
     // takes a child of at least 50,000), with some coincident centres and some flat boxes.

@@ -76,6 +76,11 @@ TEST(an_early_decision_never_drops_a_crossing) {
                 const Interval range{t_min, t_max};
                 double t = 0;
                 const bool crosses = quadratic_crossing(k, range, t);
+                // The sphere's own test gives the roots' answer, to the bit.
+                double sphere_t = 0;
+                const bool sphere_crosses = sphere_crossing({centre, r * r}, ray, range, sphere_t);
+                CHECK_EQ(sphere_crosses, crosses);
+                if (crosses && sphere_crosses) CHECK_EQ(sphere_t, t);
                 if (!quadratic_surely_out_of_range(k, range)) continue;
                 ++decided;
                 ++(k.b > 0 ? behind : beyond);

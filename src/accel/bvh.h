@@ -161,6 +161,13 @@ class Bvh {
     // "The SAH's node cost").
     static constexpr double kPackedNodeCost = 2.0;
     static constexpr double kObjectNodeCost = 1.0;
+    // The node cost of a scene's hierarchy with `called` objects tested through the table:
+    // where there are none (every object a sphere, tested inline from the leaves as a mesh's
+    // triangles are) it is built as a mesh is, which renders as fast and builds faster
+    // (spheres-1m 0.74 -> 0.63 s); otherwise with the object cost.
+    static constexpr double node_cost(std::size_t called) {
+        return called == 0 ? kPackedNodeCost : kObjectNodeCost;
+    }
 
     // How traversal tests a wide node's boxes: in float with vector code (the default), in
     // float lane by lane, or in double (what a ray unusable in float always gets). All three

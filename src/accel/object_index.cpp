@@ -41,12 +41,12 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
     });
     std::vector<std::uint32_t> bounded;
     std::vector<Entry> unbounded;
-    bool spheres = false;
+    std::size_t spheres = 0;
     bounded.reserve(objects.size());
     for (std::uint32_t i = 0; i < objects.size(); ++i)
         if (finite[i] != 0) {
             bounded.push_back(i);
-            spheres = spheres || objects[i].shape.functions->sphere != nullptr;
+            if (objects[i].shape.functions->sphere != nullptr) ++spheres;
         } else {
             unbounded.push_back(entry(objects[i], i));
         }
@@ -61,7 +61,7 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
                     const auto& s = *static_cast<const Source*>(context);
                     return s.objects[s.bounded[i]].shape.bounds();
                 }},
-               threads, Bvh::kObjectNodeCost);
+               threads, Bvh::node_cost(bounded.size() - spheres));
     bvh_.drop_binary_nodes();
     // Leaf order follows space, not the file. Reading the objects in leaf order would load
     // from all over memory, one object and then its parameters at a time (a million
@@ -78,7 +78,7 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
     });
     entries_.reserve(objects.size());
     entries_.resize(bounded_count_);
-    if (spheres) spheres_.resize(bounded_count_);
+    if (spheres > 0) spheres_.resize(bounded_count_);
     parallel_parts(bounded_count_, threads, kPart, [&](std::size_t begin, std::size_t end) {
         for (std::size_t j = begin; j < end; ++j) {
             const std::uint32_t object = bounded[j];

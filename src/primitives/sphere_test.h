@@ -55,22 +55,30 @@ inline bool quadratic_surely_out_of_range(const SphereQuadratic& k, Interval ran
     return k.c - product > 0x1p-50 * (k.c + product);
 }
 
-// The quadratic of a ray, whose direction must be unit length, and a sphere.
+// The distance of the nearer of the ray's crossings with the sphere in range (the farther
+// where the nearer is out of it), or false when neither is in range. The ray's direction
+// must be unit length.
+inline bool sphere_crossing(const SphereParameters& s, const Ray& ray, Interval range, double& t) {
+    const Vec3 oc = ray.origin - s.centre;
+    const double b = dot(oc, ray.direction);
+    const Vec3 perpendicular = oc - b * ray.direction;
+    const double discriminant = s.radius_squared - length_squared(perpendicular);
+    if (discriminant < 0) return false;
+    // c only here: most spheres whose boxes a ray enters it misses, and computing c for
+    // them too (or through a function returning the whole quadratic) cost shells-4000 4 to
+    // 8 % more instructions.
+    const SphereQuadratic quadratic{b, discriminant, length_squared(oc) - s.radius_squared};
+    if (quadratic_surely_out_of_range(quadratic, range)) return false;
+    return quadratic_crossing(quadratic, range, t);
+}
+
+// The quadratic sphere_crossing computes, whole (for tests, which check that the two agree).
 inline SphereQuadratic sphere_quadratic(const SphereParameters& s, const Ray& ray) {
     const Vec3 oc = ray.origin - s.centre;
     const double b = dot(oc, ray.direction);
     const Vec3 perpendicular = oc - b * ray.direction;
     return {b, s.radius_squared - length_squared(perpendicular),
             length_squared(oc) - s.radius_squared};
-}
-
-// The distance of the nearer of the ray's crossings with the sphere in range (the farther
-// where the nearer is out of it), or false when neither is in range.
-inline bool sphere_crossing(const SphereParameters& s, const Ray& ray, Interval range, double& t) {
-    const SphereQuadratic quadratic = sphere_quadratic(s, ray);
-    if (quadratic.discriminant < 0) return false;
-    if (quadratic_surely_out_of_range(quadratic, range)) return false;
-    return quadratic_crossing(quadratic, range, t);
 }
 
 // The sphere's intersect (PrimitiveFunctions::intersect), for the table and the leaves alike.
