@@ -106,9 +106,11 @@ TEST(a_sphere_behind_or_beyond_is_decided_without_its_roots) {
     CHECK(!quadratic_surely_out_of_range(k, {0, 9.1}));   // 9 is in range
     CHECK(!quadratic_surely_out_of_range(k, {0, 9}));     // 9 exactly: too close to call
     CHECK(quadratic_surely_out_of_range(sphere_quadratic(s, away), {0, kInfinity}));  // behind
-    // Inside, the far crossing 1 away: beyond t_max = 0.5, in range up to 2.
+    // From the centre (c < 0), the far crossing 1 away: never decided early, whether it is
+    // in range (up to 2) or beyond it (up to 0.5); the roots decide.
     const SphereQuadratic inside = sphere_quadratic(s, {{0, 0, -10}, {0, 0, -1}});
     CHECK(!quadratic_surely_out_of_range(inside, {0, 2}));
+    CHECK(!quadratic_surely_out_of_range(inside, {0, 0.5}));
     double t = 0;
     CHECK(!sphere_crossing(s, away, {0, kInfinity}, t));
     CHECK(sphere_crossing(s, toward, {0, 9.5}, t));
