@@ -99,7 +99,8 @@ struct Reference {
     }
     std::uint32_t index() const { return std::bit_cast<std::uint32_t>(centre[3]); }
     float bin() const { return lo[3]; }
-    void set_bin(std::size_t b) { lo[3] = static_cast<float>(b); }
+    // Through int: converting a 64-bit unsigned value to float takes a branch.
+    void set_bin(std::size_t b) { lo[3] = static_cast<float>(static_cast<int>(b)); }
 };
 static_assert(sizeof(Reference) == 48);
 static_assert(std::is_trivially_default_constructible_v<Reference>);
@@ -219,9 +220,10 @@ class Builder {
     void bin(const Range& range, Binned& binned);
     SahSplit best_split(const Range& range, const Binned& binned) const;
     // Moves the references of the bins up to split.last_first to the front of the range,
-    // putting each in its child's bins on the way; the children's boxes come from the bins.
+    // putting each in its child's bins on the way (unless the node is to be a leaf, whose
+    // children are never built); the children's boxes come from the bins.
     void partition(const Range& range, const Binned& binned, const SahSplit& split, int depth,
-                   Children& children);
+                   bool leaf, Children& children);
 
     Range measured(std::uint32_t begin, std::uint32_t end) const;
     // Splits in the middle of the range, for primitives no position separates.
@@ -298,9 +300,16 @@ Builder::SahSplit Builder::best_split(const Range& range, const Binned& binned) 
     // Sweep from the right for the boxes above each boundary, then from the left: the cost of
     // splitting after bin s is that of visiting both children, weighted by the chance (their
     // area over the parent's) that a ray through the parent enters each.
+    // An empty bin adds nothing: the boundary after it splits as the one before it does, at
+    // the same cost, and the first of equal costs is kept, so it is skipped (a small node
+    // has as many bins as references, and about a third of them are empty).
     std::array<double, kBins> area_above;
     Box above;
     for (std::size_t s = bin_count - 1; s > 0; --s) {
+        if (bins[s].count == 0) {
+            area_above[s] = s + 1 < bin_count ? area_above[s + 1] : 0;
+            continue;
+        }
         above.add(bins[s].box);
         area_above[s] = above.half_area();
     }
@@ -308,10 +317,11 @@ Builder::SahSplit Builder::best_split(const Range& range, const Binned& binned) 
     Box below;
     std::uint32_t count_below = 0;
     for (std::size_t s = 0; s + 1 < bin_count; ++s) {
+        if (bins[s].count == 0) continue;
         below.add(bins[s].box);
         count_below += bins[s].count;
         const std::uint32_t count_above = range.count() - count_below;
-        if (count_below == 0 || count_above == 0) continue;
+        if (count_above == 0) continue;
         const double cost = count_below * below.half_area() + count_above * area_above[s + 1];
         if (cost < best.cost) {
             best.cost = cost;
@@ -324,7 +334,7 @@ Builder::SahSplit Builder::best_split(const Range& range, const Binned& binned) 
 }
 
 void Builder::partition(const Range& range, const Binned& binned, const SahSplit& split, int depth,
-                        Children& children) {
+                        bool leaf, Children& children) {
     // The children as the bins give them, before a reference moves.
     Range& first = children.first;
     Range& second = children.second;
@@ -338,8 +348,8 @@ void Builder::partition(const Range& range, const Binned& binned, const SahSplit
         if (b <= split.last_first) first.end += bin.count;
     }
     second.begin = first.end;
-    children.first_bins.reset(plan_for(first, depth + 1));
-    children.second_bins.reset(plan_for(second, depth + 1));
+    children.first_bins.reset(leaf ? BinPlan{} : plan_for(first, depth + 1));
+    children.second_bins.reset(leaf ? BinPlan{} : plan_for(second, depth + 1));
     // Hoare's scheme: grow the first part from the front and the second from the back,
     // swapping only a pair that is on the wrong sides; each reference goes into its child's
     // bins when its side is settled. On local copies of the plans: the stores cannot then be
@@ -446,10 +456,12 @@ void Builder::build(const Range& range, const Binned* binned, int depth) {
     }
     const SahSplit split = best_split(range, *binned);
     // Partitioned even when the node becomes a leaf: the order of its references is then
-    // the one this build has always given.
+    // the one this build has always given. A leaf's children are not binned: half the
+    // nodes are leaves, and binning was most of their time.
+    const bool leaf = fits_leaf && !(split.cost < count);
     Children children;
-    if (split.found) partition(range, *binned, split, depth, children);
-    if (fits_leaf && !(split.cost < count)) return make_leaf(node, range);
+    if (split.found) partition(range, *binned, split, depth, leaf, children);
+    if (leaf) return make_leaf(node, range);
     if (!split.found) {
         // Every centroid in one bin, or areas beyond a double: split evenly.
         const auto [first, second] = median_split(range, axis);
