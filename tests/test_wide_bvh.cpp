@@ -5,6 +5,7 @@
 // origins inside boxes and on their faces, and coordinates from 1e-30 to 1e25.
 #include <algorithm>
 #include <bit>
+#include <cfloat>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -104,6 +105,32 @@ bool superset(const std::vector<bool>& big, const std::vector<bool>& small) {
 }
 
 }  // namespace
+
+// max_abs_component (which the builder's padding and every query's tolerance use) must give
+// std::fmax's answer to the bit, NaN rule included, though it no longer calls it.
+TEST(max_abs_component_is_fmax_of_the_magnitudes_to_the_bit) {
+    std::vector<double> values = {0.0,     -0.0,          0x1p-1074, -0x1p-1074,    DBL_MIN,
+                                  1.0,     -1.0,          DBL_MAX,   -DBL_MAX,      HUGE_VAL,
+                                  -HUGE_VAL, std::nan(""), -std::nan(""), 2.5e-300, 1e300};
+    Random random(77);
+    for (int i = 0; i < 200; ++i)
+        values.push_back(std::ldexp(random.uniform(-1, 1), static_cast<int>(random.next() % 2000) - 1000));
+    const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
+    int checked = 0;
+    for (const double x : values)
+        for (const double y : values) {
+            const double z = values[static_cast<std::size_t>(checked) % values.size()];
+            const double expected = std::fmax(std::fabs(x), std::fmax(std::fabs(y), std::fabs(z)));
+            const double got = max_abs_component({x, y, z});
+            if (std::isnan(expected)) {
+                CHECK(std::isnan(got));
+            } else {
+                CHECK_EQ(bits(got), bits(expected));
+            }
+            ++checked;
+        }
+    CHECK(checked > 40000);
+}
 
 TEST(wide_nodes_hold_every_leaf_once_and_nest) {
     Random random(21);

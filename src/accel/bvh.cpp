@@ -106,18 +106,9 @@ static_assert(sizeof(Reference) == 48);
 static_assert(std::is_trivially_default_constructible_v<Reference>);
 using References = std::vector<Reference, UninitializedAllocator<Reference>>;
 
-// The largest coordinate of a box, in absolute value, as max_abs_component gives it for each
-// corner. With std::max, one instruction, where std::fmax is a call to the library (its rule
-// for NaN is never needed: the build's boxes are finite); the maximum is the same number.
-double largest_coordinate(const Bounds& b) {
-    double largest = 0;
-    for (int k = 0; k < 3; ++k)
-        largest = std::max({largest, std::fabs(b.min[k]), std::fabs(b.max[k])});
-    return largest;
-}
-
 Reference make_reference(const Bounds& b, std::uint32_t index) {
-    const double pad = kBoxPadding * (1 + largest_coordinate(b));
+    const double pad =
+        kBoxPadding * (1 + max_of_magnitudes(max_abs_component(b.min), max_abs_component(b.max)));
     Reference r{};
     for (int k = 0; k < 3; ++k) {
         r.lo[k] = float_below(b.min[k] - pad);
