@@ -628,6 +628,45 @@ TEST(a_tree_of_one_node_gives_the_linear_scans_answers) {
     CHECK(bounded_hits > scenes * 100);  // most aimed rays do meet a bounded object
 }
 
+TEST(a_shadow_ray_that_misses_the_only_bounded_object_still_meets_the_planes) {
+    // One sphere and a floor: the sphere is the hierarchy's only object, so a shadow ray that
+    // has just tried it as its last blocker does not walk the hierarchy (ObjectIndex::any).
+    // Carried from ray to ray as a render carries it, the last blocker must never change an
+    // answer: the floor still blocks, and the sphere still blocks once it is no longer the
+    // one remembered.
+    std::string text = kTestViewer;
+    text += "1 1  0 0 0  100 1 0 0 0 1 1 0 1\n";
+    text += "2 -2  0 1 0  100 0 1 0 0 1 1 0 1\n";
+    const Scene scene = parse_scene(text);
+    const ObjectIndex& index = *scene.index;
+    CHECK_EQ(index.bounded_count(), std::size_t{1});
+    const auto scanned = [&](const Ray& ray, Interval range) {
+        return std::any_of(scene.objects.begin(), scene.objects.end(),
+                           [&](const Object& o) { return o.shape.intersect_any(ray, range); });
+    };
+    LastBlocker last;
+    Random random(91);
+    int differ = 0, blocked = 0, open = 0;
+    for (int r = 0; r < 4000; ++r) {
+        const Ray ray{random.in_box(4), random.unit_vector()};
+        const Interval range{1e-9, random.uniform(0.1, 10)};
+        const bool answer = scanned(ray, range);
+        if (index.any(ray, range, &last) != answer) ++differ;
+        ++(answer ? blocked : open);
+    }
+    CHECK_EQ(differ, 0);
+    CHECK(blocked > 500 && open > 500);
+    // The sphere remembered and missed, the floor ahead: blocked; nothing ahead: open.
+    last.entry = 0;
+    CHECK(index.any({{5, 0, 0}, {0, -1, 0}}, {1e-9, 10}, &last));
+    CHECK_EQ(last.entry, std::uint32_t{1});  // the floor, the entry after the bounded one
+    last.entry = 0;
+    CHECK(!index.any({{5, 0, 0}, {0, 1, 0}}, {1e-9, 10}, &last));
+    // The floor remembered and missed, the sphere ahead: blocked.
+    last.entry = 1;
+    CHECK(index.any({{0, 5, 0}, {0, -1, 0}}, {1e-9, 4.5}, &last));
+}
+
 TEST(any_hit_agrees_with_the_nearest_hit_for_every_primitive) {
     const Scene scene = parse_scene(SceneWriter(11).scene(1500, 8));
     Random random(12);
