@@ -109,12 +109,13 @@ bool superset(const std::vector<bool>& big, const std::vector<bool>& small) {
 // max_abs_component (which the builder's padding and every query's tolerance use) must give
 // std::fmax's answer to the bit, NaN rule included, though it no longer calls it.
 TEST(max_abs_component_is_fmax_of_the_magnitudes_to_the_bit) {
-    std::vector<double> values = {0.0,     -0.0,          0x1p-1074, -0x1p-1074,    DBL_MIN,
-                                  1.0,     -1.0,          DBL_MAX,   -DBL_MAX,      HUGE_VAL,
-                                  -HUGE_VAL, std::nan(""), -std::nan(""), 2.5e-300, 1e300};
+    std::vector<double> values = {0.0,       -0.0,         0x1p-1074,     -0x1p-1074, DBL_MIN,
+                                  1.0,       -1.0,         DBL_MAX,       -DBL_MAX,   HUGE_VAL,
+                                  -HUGE_VAL, std::nan(""), -std::nan(""), 2.5e-300,   1e300};
     Random random(77);
     for (int i = 0; i < 200; ++i)
-        values.push_back(std::ldexp(random.uniform(-1, 1), static_cast<int>(random.next() % 2000) - 1000));
+        values.push_back(
+            std::ldexp(random.uniform(-1, 1), static_cast<int>(random.next() % 2000) - 1000));
     const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
     int checked = 0;
     for (const double x : values)
