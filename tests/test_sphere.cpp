@@ -57,9 +57,9 @@ TEST(an_early_decision_never_drops_a_crossing) {
         double near = 0, far = 0;
         if (!quadratic_crossing(k, {-kInfinity, kInfinity}, near)) continue;
         if (!quadratic_crossing(k, {near, kInfinity}, far)) far = near;
-        std::vector<double> ends{0,           1e-9 * scale,        scale * random.uniform(0, 8),
-                                 near * 0.5,  near * (1 - 1e-9),   near * (1 - 1e-13),
-                                 far * 2,     kInfinity};
+        std::vector<double> ends{0,          1e-9 * scale,      scale * random.uniform(0, 8),
+                                 near * 0.5, near * (1 - 1e-9), near * (1 - 1e-13),
+                                 far * 2,    kInfinity};
         for (const double root : {near, far}) {
             double below = root, above = root;
             ends.push_back(root);
@@ -102,9 +102,9 @@ TEST(a_sphere_behind_or_beyond_is_decided_without_its_roots) {
     const Ray away{{0, 0, 0}, {0, 0, 1}};
     const SphereQuadratic k = sphere_quadratic(s, toward);
     CHECK_EQ(k.b, -10.0);
-    CHECK(quadratic_surely_out_of_range(k, {0, 8.9}));    // both beyond
-    CHECK(!quadratic_surely_out_of_range(k, {0, 9.1}));   // 9 is in range
-    CHECK(!quadratic_surely_out_of_range(k, {0, 9}));     // 9 exactly: too close to call
+    CHECK(quadratic_surely_out_of_range(k, {0, 8.9}));   // both beyond
+    CHECK(!quadratic_surely_out_of_range(k, {0, 9.1}));  // 9 is in range
+    CHECK(!quadratic_surely_out_of_range(k, {0, 9}));    // 9 exactly: too close to call
     CHECK(quadratic_surely_out_of_range(sphere_quadratic(s, away), {0, kInfinity}));  // behind
     // From the centre (c < 0), the far crossing 1 away: never decided early, whether it is
     // in range (up to 2) or beyond it (up to 0.5); the roots decide.
