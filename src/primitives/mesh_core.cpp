@@ -58,7 +58,9 @@ void finish(Core& core, std::vector<Triangle>& triangles, int threads) {
     core.packed.reserve(core.triangles.size());
     for (const Triangle& t : core.triangles)
         core.packed.push_back(
-            {{core.vertex(t, 0), core.vertex(t, 1), core.vertex(t, 2)}, t.place()});
+            {{core.vertex(t, 0), core.vertex(t, 1), core.vertex(t, 2)},
+             t.place(),
+             t.flipped() ? 1u : 0u});
 }
 
 bool closest(const Core& m, const Ray& ray, Interval range, Hit& hit) {
@@ -104,10 +106,12 @@ bool any(const Core& m, const Ray& ray, Interval range) {
                             });
 }
 
+// From the packed copy, not the vertex list: the same doubles, and already in cache, where
+// the vertex list's three would each be a load from anywhere in a large mesh.
 Vec3 face(const Core& m, const Hit& hit) {
-    const Triangle& tri = m.triangle(hit);
-    const Vec3 n = face_normal(m.vertex(tri, 0), m.vertex(tri, 1), m.vertex(tri, 2));
-    return tri.flipped() ? -n : n;
+    const PackedTriangle& tri = m.packed[static_cast<std::size_t>(hit.part)];
+    const Vec3 n = face_normal(tri.vertex[0], tri.vertex[1], tri.vertex[2]);
+    return tri.flipped != 0 ? -n : n;
 }
 
 namespace {
@@ -130,9 +134,10 @@ Vec3 blended_normal(const Core& m, std::span<const Vec3> normals, const Vec3& po
     // A corner without a normal (a file's zero normal) makes the triangle flat.
     const Vec3 none{};
     if (n0 == none || n1 == none || n2 == none) return face_n;
-    const Vec3& a = m.vertex(tri, 0);
-    const Vec3& b = m.vertex(tri, 1);
-    const Vec3& c = m.vertex(tri, 2);
+    const PackedTriangle& packed = m.packed[static_cast<std::size_t>(hit.part)];
+    const Vec3& a = packed.vertex[0];
+    const Vec3& b = packed.vertex[1];
+    const Vec3& c = packed.vertex[2];
     // Barycentric weights as ratios of areas, on differences scaled to a largest component of
     // about 1 so that no product overflows.
     const double scale = std::max(max_abs_component(b - a), max_abs_component(c - a));

@@ -51,10 +51,13 @@ static_assert(sizeof(Triangle) == 16);
 
 // A triangle as the hierarchy's leaves test it: its vertices' positions in sorted order,
 // copied out of the vertex list so that a leaf's triangles lie side by side in memory and
-// are tested without an index, and its place among the file's triangles for ties.
+// are tested without an index, and its place among the file's triangles for ties. The hit
+// triangle's face normal is computed from it too (it was just tested, so it is in cache),
+// hence the winding bit, which fills what would be padding.
 struct PackedTriangle {
     Vec3 vertex[3];
     std::uint32_t place;
+    std::uint32_t flipped;  // 1 when the sorted order reverses the written winding
 };
 static_assert(sizeof(PackedTriangle) == 80);
 
