@@ -667,6 +667,64 @@ TEST(a_shadow_ray_that_misses_the_only_bounded_object_still_meets_the_planes) {
     CHECK(index.any({{0, 5, 0}, {0, -1, 0}}, {1e-9, 4.5}, &last));
 }
 
+TEST(a_mesh_that_blocked_last_is_asked_again_only_behind_its_box) {
+    // A mesh (a square of two triangles at x = 10), a sphere and a floor. A mesh remembered
+    // as a light's last blocker is not tried ahead of the walk (ObjectIndex::any): a shadow
+    // ray that misses its box never asks it. A sphere remembered is tried first, as before.
+    // Either way every answer is the scan's.
+    std::string text = kTestViewer;
+    text += "14 4 2  10 -1 -1  10 1 -1  10 1 1  10 -1 1  0 1 2  0 2 3  100 1 0 0 0 1 1 0 1\n";
+    text += "1 1  0 0 0  100 1 0 0 0 1 1 0 1\n";
+    text += "2 -2  0 1 0  100 0 1 0 0 1 1 0 1\n";
+    const Scene scene = parse_scene(text);
+    const ObjectIndex& index = *scene.index;
+    CHECK_EQ(index.bounded_count(), std::size_t{2});
+    const auto asked = [&](const Ray& ray, Interval range, LastBlocker& last, bool& blocked) {
+        std::uint64_t tests = 0;
+        blocked = index.any(ray, range, &last, &tests);
+        return tests;
+    };
+    const Interval range{1e-9, 100};
+    const Ray to_mesh{{5, 0, 0}, {1, 0, 0}}, to_sphere{{0, 5, 0}, {0, -1, 0}};
+    const Ray up{{5, 0, 0}, {0, 1, 0}};  // misses both boxes and the floor
+    bool blocked = false;
+    LastBlocker mesh_last;
+    asked(to_mesh, range, mesh_last, blocked);
+    CHECK(blocked);
+    LastBlocker sphere_last;
+    const Interval above_floor{1e-9, 6};  // the sphere at 4, the floor at 7
+    asked(to_sphere, above_floor, sphere_last, blocked);
+    CHECK(blocked);
+    CHECK(mesh_last.entry != sphere_last.entry);
+    // Only the floor is asked when the mesh is remembered; the sphere is tried, then the floor.
+    LastBlocker last = mesh_last;
+    CHECK_EQ(asked(up, range, last, blocked), std::uint64_t{1});
+    CHECK(!blocked);
+    last = sphere_last;
+    CHECK_EQ(asked(up, range, last, blocked), std::uint64_t{2});
+    CHECK(!blocked);
+    // Remembered, the mesh still blocks, and the sphere blocks whichever is remembered.
+    last = mesh_last;
+    CHECK(index.any(to_mesh, range, &last));
+    CHECK_EQ(last.entry, mesh_last.entry);
+    CHECK(index.any(to_sphere, above_floor, &last));
+    CHECK_EQ(last.entry, sphere_last.entry);
+    // Carried from ray to ray, the answers are the scan's.
+    Random random(57);
+    int differ = 0, yes = 0, no = 0;
+    for (int r = 0; r < 4000; ++r) {
+        const Ray ray{random.in_box(12), random.unit_vector()};
+        const Interval span{1e-9, random.uniform(0.1, 20)};
+        const bool answer =
+            std::any_of(scene.objects.begin(), scene.objects.end(),
+                        [&](const Object& o) { return o.shape.intersect_any(ray, span); });
+        if (index.any(ray, span, &last) != answer) ++differ;
+        ++(answer ? yes : no);
+    }
+    CHECK_EQ(differ, 0);
+    CHECK(yes > 500 && no > 500);
+}
+
 TEST(any_hit_agrees_with_the_nearest_hit_for_every_primitive) {
     const Scene scene = parse_scene(SceneWriter(11).scene(1500, 8));
     Random random(12);

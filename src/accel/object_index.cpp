@@ -140,8 +140,10 @@ bool ObjectIndex::any(const Ray& ray, Interval range, Blocker* last, std::uint64
     Hit hit;
     std::uint64_t uncounted = 0;
     std::uint64_t& asked = tests != nullptr ? *tests : uncounted;
-    // The last blocker is tried first; if it does not block, it is not tried again below
-    // (for a mesh that would be a second search of all its triangles).
+    // The last blocker is tried first; if it does not block, it is not tried again below.
+    // Not one with a shadow test of its own (a mesh, an affine frame): asked ahead of its
+    // box it would prepare the ray for its own walk or frame on every shadow ray, most of
+    // which its box turns away; the walk below reaches it behind its box instead.
     std::uint32_t tried = kNone;
     auto stops = [&](std::uint32_t i) {
         if (i == tried) return false;
@@ -150,7 +152,8 @@ bool ObjectIndex::any(const Ray& ray, Interval range, Blocker* last, std::uint64
         if (last != nullptr) last->entry = i;
         return true;
     };
-    if (last != nullptr && last->entry < entries_.size()) {
+    if (last != nullptr && last->entry < entries_.size() &&
+        !entries_[last->entry].has_own_shadow_test()) {
         if (stops(last->entry)) return true;
         tried = last->entry;
     }
