@@ -725,6 +725,24 @@ TEST(a_mesh_that_blocked_last_is_asked_again_only_behind_its_box) {
     CHECK(yes > 500 && no > 500);
 }
 
+TEST(many_parts_marks_meshes_and_composites_through_frames) {
+    // The column that keeps a last blocker from being asked ahead of its box (Shape::many_parts).
+    const std::string surface = " 100 1 0 0 0 1 1 0 1\n";
+    const std::string frame = "7  0 0 0  1 0 0  0 1 0  0 0 1  ";
+    const std::string mesh = "14 3 1  0 0 0  1 0 0  0 1 0  0 1 2";
+    const std::string sphere = "1 1  0 0 0";
+    const std::string solid = "20  1 1  0 0 0" + surface + "  12 0 0 0 1 1 1" + surface;
+    std::string text = kTestViewer;
+    for (const std::string& object : {mesh + surface, frame + mesh + surface, solid, frame + solid,
+                                      sphere + surface, frame + sphere + surface})
+        text += object;
+    const Scene scene = parse_scene(text);
+    CHECK_EQ(scene.objects.size(), std::size_t{6});
+    const bool expected[] = {true, true, true, true, false, false};
+    for (std::size_t i = 0; i < scene.objects.size(); ++i)
+        CHECK_EQ(scene.objects[i].shape.many_parts(), expected[i]);
+}
+
 TEST(any_hit_agrees_with_the_nearest_hit_for_every_primitive) {
     const Scene scene = parse_scene(SceneWriter(11).scene(1500, 8));
     Random random(12);

@@ -110,6 +110,11 @@ struct PrimitiveFunctions {
     // triangle): its corners, for handing it to another library as triangles (bench/embree).
     // nullptr: not such a primitive.
     CornersFn* corners = nullptr;
+    // True where one test searches many parts: a mesh's triangles (14, 15, 16), a
+    // composite's operands (CSG); an affine frame asks its inner primitive. The object
+    // hierarchy then asks a shadow ray's last blocker only behind its box, where a cheap
+    // primitive is asked first. nullptr: false.
+    PropertyFn* many_parts = nullptr;
     // For a primitive that is a sphere and nothing else (1): its centre and squared radius,
     // which the object hierarchy copies into its leaves to test it inline, without a call
     // (primitives/sphere_test.h, the same code as its intersect). nullptr: not a sphere.
@@ -173,6 +178,9 @@ struct Shape {
     }
     bool carries_surfaces() const {
         return functions->carries_surfaces != nullptr && functions->carries_surfaces(data.get());
+    }
+    bool many_parts() const {
+        return functions->many_parts != nullptr && functions->many_parts(data.get());
     }
 };
 

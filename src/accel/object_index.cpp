@@ -93,7 +93,7 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
 ObjectIndex::Entry ObjectIndex::entry(const Object& object, std::uint32_t index) {
     const Shape& shape = object.shape;
     return {shape.intersect_function(), shape.any_hit_function(), shape.data.get(), index,
-            shape.functions->sphere != nullptr};
+            shape.functions->sphere != nullptr, shape.many_parts()};
 }
 
 bool ObjectIndex::hits(std::uint32_t i, const Ray& ray, Interval range, Hit& hit) const {
@@ -141,9 +141,9 @@ bool ObjectIndex::any(const Ray& ray, Interval range, Blocker* last, std::uint64
     std::uint64_t uncounted = 0;
     std::uint64_t& asked = tests != nullptr ? *tests : uncounted;
     // The last blocker is tried first; if it does not block, it is not tried again below.
-    // Not one with a shadow test of its own (a mesh, an affine frame): asked ahead of its
-    // box it would prepare the ray for its own walk or frame on every shadow ray, most of
-    // which its box turns away; the walk below reaches it behind its box instead.
+    // Not one made of many parts (a mesh, CSG): asked ahead of its box it would start a
+    // search of its parts on every shadow ray, most of which its box turns away; the walk
+    // below reaches it behind its box instead.
     std::uint32_t tried = kNone;
     auto stops = [&](std::uint32_t i) {
         if (i == tried) return false;
@@ -153,7 +153,7 @@ bool ObjectIndex::any(const Ray& ray, Interval range, Blocker* last, std::uint64
         return true;
     };
     if (last != nullptr && last->entry < entries_.size() &&
-        !entries_[last->entry].has_own_shadow_test()) {
+        !entries_[last->entry].many_parts) {
         if (stops(last->entry)) return true;
         tried = last->entry;
     }

@@ -57,10 +57,8 @@ class ObjectIndex {
         // A sphere, tested inline from spheres_ (its table row's sphere column) instead of
         // through intersect: no call, and no load of its parameters from elsewhere.
         bool sphere;
-
-        // A primitive with a shadow test of its own (a mesh, an affine frame): one made of
-        // many parts, or that prepares the ray before its first test.
-        bool has_own_shadow_test() const { return intersect_any != intersect; }
+        // One test searches many parts (Shape::many_parts: a mesh, CSG, or a frame of one).
+        bool many_parts;
     };
 
     static Entry entry(const Object& object, std::uint32_t index);

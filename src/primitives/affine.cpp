@@ -108,6 +108,8 @@ bool carries_surfaces(const void* shape) {
     return static_cast<const Affine*>(shape)->inner.carries_surfaces();
 }
 
+bool many_parts(const void* shape) { return static_cast<const Affine*>(shape)->inner.many_parts(); }
+
 bool inside(const void* shape, const Vec3& point) {
     const auto& a = *static_cast<const Affine*>(shape);
     return a.inner.has_inside() && a.inner.inside(a.frame.to_local_point(point));
@@ -127,6 +129,7 @@ extern const PrimitiveFunctions functions{.read = read,
                                           .carries_surfaces = carries_surfaces,
                                           .collect = collect,
                                           .solid_bounds = solid_bounds,
-                                          .shading_normal = shading_normal};
+                                          .shading_normal = shading_normal,
+                                          .many_parts = many_parts};
 
 }  // namespace rt::affine

@@ -199,6 +199,7 @@ bool inside(const void* shape, const Vec3& point) {
 }
 
 bool carries_surfaces(const void*) { return true; }
+bool many_parts(const void*) { return true; }
 
 // Composites: their operands bring their own surfaces, and the boundary is found from
 // the operands' crossings. The three differ only in how they read.
@@ -210,7 +211,8 @@ constexpr PrimitiveFunctions composite(ReadShapeFn* read_operation) {
             .inside = inside,
             .carries_surfaces = carries_surfaces,
             .collect = collect,
-            .solid_bounds = solid_bounds};
+            .solid_bounds = solid_bounds,
+            .many_parts = many_parts};
 }
 
 }  // namespace

@@ -64,6 +64,7 @@ extern const PrimitiveFunctions functions{.read = read,
                                           .intersect = intersect,
                                           .normal = normal,
                                           .bounds = bounds,
-                                          .intersect_any = intersect_any};
+                                          .intersect_any = intersect_any,
+                                          .many_parts = mesh_core::many_parts};
 
 }  // namespace rt::mesh

@@ -143,6 +143,9 @@ Vec3 shading_normal(const void* shape, const Vec3& point, const Hit& hit);
 Bounds bounds(const void* shape);
 }  // namespace shaded
 
+// The many_parts column of every mesh: a test searches its triangles.
+inline bool many_parts(const void*) { return true; }
+
 // Out of line: the part of build that does not depend on where the indices come from.
 void finish(Core& core, std::vector<Triangle>& triangles, int threads);
 

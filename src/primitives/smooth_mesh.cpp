@@ -59,6 +59,7 @@ extern const PrimitiveFunctions functions{.read = read,
                                           .normal = mesh_core::shaded::normal,
                                           .bounds = mesh_core::shaded::bounds,
                                           .intersect_any = mesh_core::shaded::intersect_any,
-                                          .shading_normal = mesh_core::shaded::shading_normal};
+                                          .shading_normal = mesh_core::shaded::shading_normal,
+                                          .many_parts = mesh_core::many_parts};
 
 }  // namespace rt::smooth_mesh
