@@ -92,8 +92,12 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
 
 ObjectIndex::Entry ObjectIndex::entry(const Object& object, std::uint32_t index) {
     const Shape& shape = object.shape;
-    return {shape.intersect_function(), shape.any_hit_function(), shape.data.get(), index,
-            shape.functions->sphere != nullptr, shape.many_parts()};
+    return {.intersect = shape.intersect_function(),
+            .intersect_any = shape.any_hit_function(),
+            .data = shape.data.get(),
+            .object = index,
+            .sphere = shape.functions->sphere != nullptr,
+            .many_parts = shape.many_parts()};
 }
 
 bool ObjectIndex::hits(std::uint32_t i, const Ray& ray, Interval range, Hit& hit) const {
@@ -152,8 +156,7 @@ bool ObjectIndex::any(const Ray& ray, Interval range, Blocker* last, std::uint64
         if (last != nullptr) last->entry = i;
         return true;
     };
-    if (last != nullptr && last->entry < entries_.size() &&
-        !entries_[last->entry].many_parts) {
+    if (last != nullptr && last->entry < entries_.size() && !entries_[last->entry].many_parts) {
         if (stops(last->entry)) return true;
         tried = last->entry;
     }

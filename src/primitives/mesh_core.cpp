@@ -57,10 +57,9 @@ void finish(Core& core, std::vector<Triangle>& triangles, int threads) {
     for (const std::uint32_t i : core.bvh.take_order()) core.triangles.push_back(triangles[i]);
     core.packed.reserve(core.triangles.size());
     for (const Triangle& t : core.triangles)
-        core.packed.push_back(
-            {{core.vertex(t, 0), core.vertex(t, 1), core.vertex(t, 2)},
-             t.place(),
-             t.flipped() ? 1u : 0u});
+        core.packed.push_back({{core.vertex(t, 0), core.vertex(t, 1), core.vertex(t, 2)},
+                               t.place(),
+                               t.flipped() ? 1u : 0u});
 }
 
 bool closest(const Core& m, const Ray& ray, Interval range, Hit& hit) {
