@@ -162,8 +162,9 @@ bool ObjectIndex::any(const Ray& ray, Interval range, Blocker* last, std::uint64
     }
     for (auto i = static_cast<std::uint32_t>(bounded_count_); i < entries_.size(); ++i)
         if (stops(i)) return true;
-    // A hierarchy over one object that was just tried (a mesh on a floor, say) has nothing
-    // more to offer: its walk would prepare the ray and test the box only to skip it.
+    // A hierarchy over one object that was just tried (a sphere on a floor, say; a mesh is
+    // not tried ahead) has nothing more to offer: its walk would prepare the ray and test the
+    // box only to skip it.
     if (bounded_count_ == 1 && tried == 0) return false;
     return bvh_.any(ray, range.t_min, range.t_max, stops);
 }
