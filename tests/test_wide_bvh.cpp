@@ -161,13 +161,13 @@ TEST(the_same_wide_tree_on_any_number_of_threads) {
 }
 
 TEST(float_lanes_keep_every_box_the_double_test_keeps) {
-    // One wide node of four boxes at a time, compared lane by lane.
+    // One wide node of up to eight boxes at a time, compared lane by lane.
     Random random(22);
     int kept_exact = 0, kept_float = 0, failures = 0;
     for (int r = 0; r < 200000; ++r) {
         const double scale = std::ldexp(1.0, static_cast<int>(random.next() % 181) - 100);
         WideNode node{};
-        node.size = static_cast<std::uint8_t>(1 + random.next() % 4);
+        node.size = static_cast<std::uint8_t>(1 + random.next() % WideNode::kWidth);
         for (int i = 0; i < WideNode::kWidth; ++i)
             for (int k = 0; k < 3; ++k) {
                 double lo = random.uniform(-2, 2), hi = lo + random.uniform(0, 2);
@@ -199,7 +199,7 @@ TEST(float_lanes_keep_every_box_the_double_test_keeps) {
         const WideRay wide(ray, t_min);
         CHECK(wide.usable());
         const BoxRay exact(ray);
-        float enter_simd[4], enter_scalar[4];
+        float enter_simd[WideNode::kWidth], enter_scalar[WideNode::kWidth];
         const unsigned simd = wide.enters<true>(node, t_max, enter_simd);
         const unsigned scalar = wide.enters<false>(node, t_max, enter_scalar);
         if (simd != scalar) ++failures;

@@ -476,7 +476,7 @@ void Builder::build(const Range& range, const Binned* binned, int depth) {
 
 // The children a wide node takes in place of an interior binary node: the node's two
 // children, then repeatedly the interior child of largest surface area opened into its two,
-// until there are four or only leaves. Returns how many.
+// until there are WideNode::kWidth (eight) or only leaves. Returns how many.
 int Bvh::wide_children(std::uint32_t binary, std::uint32_t (&children)[WideNode::kWidth]) const {
     children[0] = binary + 1;
     children[1] = nodes_[binary].offset;

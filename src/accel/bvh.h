@@ -81,13 +81,15 @@ class BoxRay {
     int far_bound_[3];
 };
 
-// One node of the wide tree that traversal walks: up to four children, whose boxes lie side
-// by side (structure of arrays) so that one ray is tested against all four at once. 128
-// bytes, two cache lines. The wide tree is the binary tree above collapsed: each wide node
-// takes the place of up to three binary interior nodes, and its children are the binary
-// nodes below them, so the leaves and their order are the binary tree's.
+// One node of the wide tree that traversal walks: up to eight children, whose boxes lie side
+// by side (structure of arrays) so that one ray is tested against several at once. 256
+// bytes, four cache lines. The wide tree is the binary tree above collapsed: each wide node
+// takes the place of up to seven binary interior nodes, and its children are the binary
+// nodes below them, so the leaves and their order are the binary tree's. Eight rather than
+// four: a query visits fewer nodes, each a load that waits for the test before it
+// (docs/performance.md, "Eight children per node").
 struct alignas(64) WideNode {
-    static constexpr int kWidth = 4;
+    static constexpr int kWidth = 8;
     // box[k][i] for k < 3 is child i's min corner along axis k, box[3 + k][i] its max; floats
     // copied from the binary nodes (already rounded outward). Unused lanes hold an empty box.
     float box[6][kWidth];
@@ -95,7 +97,7 @@ struct alignas(64) WideNode {
     std::uint32_t child[kWidth];
     std::uint8_t count[kWidth];  // a leaf child's primitives; 0 for an interior child
     std::uint8_t size;           // children in use, from the first lane on
-    std::uint8_t unused[11];     // zero: no padding of undefined value, so nodes compare bytewise
+    std::uint8_t unused[23];     // zero: no padding of undefined value, so nodes compare bytewise
 
     bool is_leaf(int i) const { return count[i] != 0; }
     // Child i's box laid out as a binary node's (min x, y, z, then max), for the double test.
@@ -103,11 +105,11 @@ struct alignas(64) WideNode {
         return {box[0][i], box[1][i], box[2][i], box[3][i], box[4][i], box[5][i]};
     }
 };
-static_assert(sizeof(WideNode) == 128);
+static_assert(sizeof(WideNode) == 256);
 static_assert(std::is_trivially_default_constructible_v<WideNode>);
-static_assert(WideNode::kWidth == 4, "the vector code below is four lanes wide");
+static_assert(WideNode::kWidth == 8, "the vector code below tests two halves of four lanes");
 
-// A ray prepared for testing the four boxes of a wide node in float. Float arithmetic only
+// A ray prepared for testing the boxes of a wide node in float. Float arithmetic only
 // culls, so every rounding is taken against culling: the origin is bracketed by the floats
 // just below and above it, each slab distance is computed from the bracket end that makes
 // it nearer (entry) or farther (exit), and the entry and exit are widened by a relative
@@ -233,9 +235,9 @@ class Bvh {
   private:
     // With at most kMaxSahDepth SAH levels and median splits below them, no path is longer
     // than kMaxSahDepth + 32 nodes for fewer than 2^32 primitives, and no wide path longer
-    // than that. Each wide node visited pushes at most four children and pops one, so the
-    // stack holds at most three entries per level and four more.
-    static constexpr int kStackSize = 3 * (kMaxSahDepth + 40) + 4;
+    // than that. Each wide node visited pushes at most eight children and pops one, so the
+    // stack holds at most seven entries per level and eight more.
+    static constexpr int kStackSize = (WideNode::kWidth - 1) * (kMaxSahDepth + 40) + WideNode::kWidth;
 
     void collapse(int threads);
     int wide_children(std::uint32_t binary, std::uint32_t (&children)[WideNode::kWidth]) const;
@@ -264,7 +266,7 @@ bool Bvh::walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) c
     if (wide_.empty()) return false;
     // A tree of one node (a scene of a few objects, or one mesh) takes the double test: for a
     // single node, preparing the ray for the float test costs more than it saves. Its
-    // children are leaves, visited in lane order without the stack: with four at most, the
+    // children are leaves, visited in lane order without the stack: with eight at most, the
     // order's pruning is worth less than sorting them (a scene that is one mesh and a plane
     // spent a quarter of its instructions above the mesh's own walk).
     if (wide_.size() == 1) {
@@ -397,11 +399,11 @@ inline WideRay::WideRay(const Ray& ray, double t_min) {
     t_min_ = static_cast<float>(std::clamp(t_min, -kLargest, kLargest));
 }
 
-// The four lanes' slab test. Per axis, the entry bound's row minus the origin, times the
-// inverse direction, and likewise the exit; the entry is the largest of t_min and the three,
-// the exit the smallest of t_max and the three. A NaN (0 * inf: a ray parallel to a slab
-// with its origin on the slab's plane) loses every comparison, so that slab is ignored,
-// which only keeps more. Unused lanes are masked off.
+// The slab test of a node's lanes, four at a time. Per axis, the entry bound's row minus the
+// origin, times the inverse direction, and likewise the exit; the entry is the largest of
+// t_min and the three, the exit the smallest of t_max and the three. A NaN (0 * inf: a ray
+// parallel to a slab with its origin on the slab's plane) loses every comparison, so that
+// slab is ignored, which only keeps more. Unused lanes are masked off.
 template <bool Simd>
 inline unsigned WideRay::enters(const WideNode& node, double t_max,
                                 float t_enter[WideNode::kWidth]) const {
@@ -409,26 +411,33 @@ inline unsigned WideRay::enters(const WideNode& node, double t_max,
     const float t_max_f = t_max < 3e38 ? static_cast<float>(std::max(t_max, -3e38)) : HUGE_VALF;
     constexpr float grow = 1 + kFloatMargin, shrink = 1 - kFloatMargin;
     if constexpr (Simd) {
+        // Four lanes: one SSE or NEON register on every machine rt is built for. (Eight in
+        // one vector would be split into halves by the compiler anyway, with lane moves.)
         using Floats = float __attribute__((vector_size(16)));
         using Ints = std::int32_t __attribute__((vector_size(16)));
-        auto load = [&](int row) {
-            Floats v;
-            std::memcpy(&v, node.box[row], sizeof v);
-            return v;
-        };
-        Floats near = Floats{} + t_min_, far = Floats{} + t_max_f;
-        for (int k = 0; k < 3; ++k) {
-            const Floats slab_near = (load(near_bound_[k]) - near_origin_[k]) * inverse_[k];
-            const Floats slab_far = (load(far_bound_[k]) - far_origin_[k]) * inverse_[k];
-            near = slab_near > near ? slab_near : near;
-            far = slab_far < far ? slab_far : far;
+        constexpr int kLanes = 4;
+        unsigned lanes = 0;
+        for (int half = 0; half < WideNode::kWidth / kLanes; ++half) {
+            const int first = half * kLanes;
+            auto load = [&](int row) {
+                Floats v;
+                std::memcpy(&v, node.box[row] + first, sizeof v);
+                return v;
+            };
+            Floats near = Floats{} + t_min_, far = Floats{} + t_max_f;
+            for (int k = 0; k < 3; ++k) {
+                const Floats slab_near = (load(near_bound_[k]) - near_origin_[k]) * inverse_[k];
+                const Floats slab_far = (load(far_bound_[k]) - far_origin_[k]) * inverse_[k];
+                near = slab_near > near ? slab_near : near;
+                far = slab_far < far ? slab_far : far;
+            }
+            near = near * (near >= 0 ? Floats{} + shrink : Floats{} + grow);
+            far = far * (far >= 0 ? Floats{} + grow : Floats{} + shrink) + kFloatFloor;
+            // Each lane's bit where it is in (the comparison gives all ones there), gathered.
+            const Ints in = (near <= far) & Ints{1, 2, 4, 8};
+            std::memcpy(t_enter + first, &near, sizeof near);
+            lanes |= static_cast<unsigned>(in[0] | in[1] | in[2] | in[3]) << first;
         }
-        near = near * (near >= 0 ? Floats{} + shrink : Floats{} + grow);
-        far = far * (far >= 0 ? Floats{} + grow : Floats{} + shrink) + kFloatFloor;
-        // Each lane's bit where it is in (the comparison gives all ones there), gathered.
-        const Ints in = (near <= far) & Ints{1, 2, 4, 8};
-        std::memcpy(t_enter, &near, sizeof near);
-        const auto lanes = static_cast<unsigned>(in[0] | in[1] | in[2] | in[3]);
         return lanes & ((1u << node.size) - 1);
     } else {
         unsigned lanes = 0;
