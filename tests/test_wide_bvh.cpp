@@ -200,9 +200,11 @@ TEST(float_lanes_keep_every_box_the_double_test_keeps) {
         CHECK(wide.usable());
         const BoxRay exact(ray);
         float enter_simd[WideNode::kWidth], enter_scalar[WideNode::kWidth];
-        const unsigned simd = wide.enters<true>(node, t_max, enter_simd);
-        const unsigned scalar = wide.enters<false>(node, t_max, enter_scalar);
-        if (simd != scalar) ++failures;
+        float enter_eight[WideNode::kWidth];
+        const unsigned simd = wide.enters<4>(node, t_max, enter_simd);
+        const unsigned scalar = wide.enters<1>(node, t_max, enter_scalar);
+        const unsigned eight = wide.enters<8>(node, t_max, enter_eight);
+        if (simd != scalar || eight != scalar) ++failures;
         for (int i = 0; i < node.size; ++i) {
             const float bound[6] = {node.box[0][i], node.box[1][i], node.box[2][i],
                                     node.box[3][i], node.box[4][i], node.box[5][i]};
@@ -214,7 +216,7 @@ TEST(float_lanes_keep_every_box_the_double_test_keeps) {
                 std::cerr << "dropped: ray " << show(ray.origin) << ' ' << show(ray.direction)
                           << " lane " << i << " enters at " << t << "\n";
             }
-            if (enter_simd[i] != enter_scalar[i]) ++failures;
+            if (enter_simd[i] != enter_scalar[i] || enter_eight[i] != enter_scalar[i]) ++failures;
         }
         kept_float += std::popcount(simd);
     }
@@ -251,8 +253,11 @@ TEST(vector_scalar_and_double_traversals_offer_the_same_boxes) {
             const double t_max = r % 2 ? kInfinity : random.uniform(1, 20) * scale;
             const auto exact = offered<BoxTest::exact>(bvh, ray, 0, t_max);
             const auto simd = offered<BoxTest::simd>(bvh, ray, 0, t_max);
+            const auto four = offered<BoxTest::four>(bvh, ray, 0, t_max);
+            const auto eight = offered<BoxTest::eight>(bvh, ray, 0, t_max);
             const auto scalar = offered<BoxTest::scalar>(bvh, ray, 0, t_max);
-            if (simd != scalar || !superset(simd, exact)) ++failures;
+            if (simd != scalar || four != scalar || eight != scalar || !superset(simd, exact))
+                ++failures;
         }
         CHECK_EQ(failures, 0);
     }
