@@ -4,6 +4,7 @@
 // object at the same distance for every ray and render the same image on any thread count.
 #include <algorithm>
 #include <atomic>
+#include <cstdint>
 #include <bit>
 #include <cstring>
 #include <filesystem>
@@ -15,6 +16,7 @@
 #include <thread>
 
 #include "accel/bvh.h"
+#include "accel/large_pages.h"
 #include "accel/object_index.h"
 #include "accel/parallel.h"
 #include "memory_checks.h"  // RT_MEASURES_MEMORY: 0 under ASan
@@ -231,6 +233,46 @@ TEST(parallel_parts_pass_a_failure_on) {
         caught = std::string(e.what()) == "part failed";
     }
     CHECK(caught);
+}
+
+TEST(large_arrays_take_whole_huge_pages_and_small_ones_their_alignment) {
+    for (const std::size_t bytes : {std::size_t{1}, std::size_t{100}, kLargeArrayBytes - 1,
+                                    kLargeArrayBytes, kLargeArrayBytes + 1, 3 * kLargeArrayBytes}) {
+        for (const std::size_t alignment : {std::size_t{4}, std::size_t{16}, std::size_t{64}}) {
+            auto* const p = static_cast<unsigned char*>(allocate_array(bytes, alignment));
+            const auto address = reinterpret_cast<std::uintptr_t>(p);
+            CHECK_EQ(address % alignment, 0u);
+#if defined(__linux__)
+            // Where huge pages can back them: an array of whole 2 MiB pages.
+            if (bytes >= kLargeArrayBytes) CHECK_EQ(address % kLargeArrayBytes, 0u);
+#endif
+            // Every byte writable, and what is written stays.
+            std::memset(p, 0xA5, bytes);
+            CHECK(p[0] == 0xA5 && p[bytes / 2] == 0xA5 && p[bytes - 1] == 0xA5);
+            free_array(p, bytes, alignment);
+        }
+    }
+}
+
+TEST(a_vector_keeps_its_elements_as_it_grows_into_huge_pages_and_back) {
+    // Growing across the threshold moves the elements from operator new's memory to mapped
+    // pages; shrinking to fit moves them back. Under ASan a free of the wrong kind or size fails.
+    std::vector<WideNode, UninitializedAllocator<WideNode>> nodes;
+    const std::size_t count = 3 * kLargeArrayBytes / sizeof(WideNode);
+    for (std::size_t i = 0; i < count; ++i) {
+        WideNode n{};
+        n.child[0] = static_cast<std::uint32_t>(i);
+        n.box[5][7] = static_cast<float>(i);
+        nodes.push_back(n);
+    }
+    CHECK_EQ(reinterpret_cast<std::uintptr_t>(nodes.data()) % alignof(WideNode), 0u);
+    bool kept = true;
+    for (std::size_t i = 0; i < count; ++i)
+        kept = kept && nodes[i].child[0] == i && nodes[i].box[5][7] == static_cast<float>(i);
+    CHECK(kept);
+    nodes.resize(10);
+    nodes.shrink_to_fit();
+    CHECK(nodes.size() == 10 && nodes[9].child[0] == 9);
 }
 
 TEST(traversal_offers_every_box_the_ray_crosses) {

@@ -192,7 +192,7 @@ class Builder {
     // `spare` counts the threads that may still be started (shared by every builder of one
     // tree, and lent back by a thread while it waits for another).
     // `node_cost`: visiting a node, relative to testing one primitive (Bvh's constructor).
-    Builder(References& refs, std::vector<BvhNode>& nodes, std::atomic<int>& spare,
+    Builder(References& refs, Bvh::Nodes& nodes, std::atomic<int>& spare,
             double node_cost)
         : refs_(refs), nodes_(nodes), spare_(spare), node_cost_(node_cost) {}
 
@@ -235,7 +235,7 @@ class Builder {
     bool take_spare();
 
     References& refs_;
-    std::vector<BvhNode>& nodes_;
+    Bvh::Nodes& nodes_;
     std::atomic<int>& spare_;
     double node_cost_;
 };
@@ -394,7 +394,7 @@ void Builder::build_children(std::size_t node, const Range& first, const Binned*
     }
     // The two children's references are disjoint ranges of refs_, so they can be
     // partitioned at the same time.
-    std::vector<BvhNode> second_nodes;
+    Bvh::Nodes second_nodes;
     second_nodes.reserve(2 * std::size_t{second.count()} - 1);
     std::exception_ptr failure;
     {

@@ -214,6 +214,11 @@ class Bvh {
         Bounds (*bounds)(const void* context, std::uint32_t i);
     };
 
+    // The binary nodes, and the primitives' leaf order: arrays filled on several threads,
+    // so allocated without being written first (parallel.h).
+    using Nodes = std::vector<BvhNode, UninitializedAllocator<BvhNode>>;
+    using Order = std::vector<std::uint32_t, UninitializedAllocator<std::uint32_t>>;
+
     Bvh() = default;
     // Builds over the given boxes, which must be finite, with binned SAH splits, on up to
     // `threads` threads (the result is the same for any number). Primitive i is the one with
@@ -238,7 +243,7 @@ class Bvh {
     // Frees the binary tree, which traversal does not use (only tests inspect it).
     void drop_binary_nodes() { nodes_ = {}; }
     // Gives up the leaf order, for an owner that stores its primitives in that order itself.
-    std::vector<std::uint32_t> take_order() { return std::move(order_); }
+    Order take_order() { return std::move(order_); }
 
     // Calls visit(position) for each primitive (its place in leaf order) whose leaf the ray
     // may reach in [t_min, t_max], nearer leaves first. visit may lower t_max, the best hit
@@ -301,10 +306,10 @@ class Bvh {
     }
 #endif
 
-    std::vector<BvhNode> nodes_;
+    Nodes nodes_;
     // Allocated without being written first (WideNode is trivial): see collapse().
     std::vector<WideNode, UninitializedAllocator<WideNode>> wide_;
-    std::vector<std::uint32_t> order_;
+    Order order_;
 };
 
 // Nodes are visited depth first. At a wide node all children's boxes are tested at once; a lone

@@ -70,7 +70,7 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
     // place in leaf order. Writes to scattered places do not hold up the loop as loads
     // do. With several threads each reads its own part.
     static_assert(std::is_trivially_default_constructible_v<Entry>);  // see entries_
-    const std::vector<std::uint32_t> order = bvh_.take_order();
+    const Bvh::Order order = bvh_.take_order();
     bounded_count_ = order.size();
     std::vector<std::uint32_t, UninitializedAllocator<std::uint32_t>> place(bounded_count_);
     parallel_parts(bounded_count_, threads, kPart, [&](std::size_t begin, std::size_t end) {

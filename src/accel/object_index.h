@@ -72,7 +72,7 @@ class ObjectIndex {
     std::vector<Entry, UninitializedAllocator<Entry>> entries_;
     // Beside each bounded entry in leaf order, its sphere's parameters where it is a sphere
     // (unused otherwise); empty in a scene without spheres.
-    std::vector<SphereParameters> spheres_;
+    std::vector<SphereParameters, UninitializedAllocator<SphereParameters>> spheres_;
     std::size_t bounded_count_ = 0;
     std::size_t object_count_ = 0;
 };

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "accel/bvh.h"
+#include "accel/parallel.h"
 #include "primitives/watertight.h"
 #include "rt/primitive.h"
 
@@ -63,8 +64,10 @@ static_assert(sizeof(PackedTriangle) == 80);
 
 struct Core {
     std::vector<Vec3> vertices;
-    std::vector<Triangle> triangles;     // in the hierarchy's leaf order; Hit::part indexes it
-    std::vector<PackedTriangle> packed;  // the same triangles in the same order
+    // In the hierarchy's leaf order (Hit::part indexes it), and packed, in the same order.
+    // Large arrays: in 2 MiB pages where the kernel offers them (accel/large_pages.h).
+    std::vector<Triangle, UninitializedAllocator<Triangle>> triangles;
+    std::vector<PackedTriangle, UninitializedAllocator<PackedTriangle>> packed;
     Bvh bvh;
     Bounds box;
 
