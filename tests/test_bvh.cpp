@@ -4,8 +4,8 @@
 // object at the same distance for every ray and render the same image on any thread count.
 #include <algorithm>
 #include <atomic>
-#include <cstdint>
 #include <bit>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -16,10 +16,10 @@
 #include <thread>
 
 #include "accel/bvh.h"
-#include "accel/large_pages.h"
 #include "accel/object_index.h"
 #include "accel/parallel.h"
 #include "memory_checks.h"  // RT_MEASURES_MEMORY: 0 under ASan
+#include "rt/large_pages.h"
 #include "rt/render.h"
 #include "rt/trace.h"
 #include "scene_util.h"

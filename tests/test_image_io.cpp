@@ -2,6 +2,7 @@
 // mapping, reading PNG files another encoder wrote.
 #include <bit>
 #include <cmath>
+#include <cstdint>
 #include <string_view>
 
 #include "check.h"
@@ -422,4 +423,25 @@ TEST(damaged_streams_and_files_fail_cleanly) {
         failures += throws_error([&] { rt::inflate(random_bytes(64, random.next()), 1 << 16); });
     }
     CHECK(failures > 600);  // most damage is caught (by the checksums where nothing else)
+}
+
+TEST(quantize_rounds_as_lround_does_at_every_half_and_beside_it) {
+    bool same = true;
+    const auto agree = [&](double x) {
+        same = same && rt::round_to_nearest(x) == static_cast<unsigned>(std::lround(x));
+    };
+    for (unsigned k = 0; k <= 65536; ++k) {
+        for (const double x : {k + 0.0, k + 0.5}) {
+            agree(x);
+            agree(std::nextafter(x, 0.0));
+            agree(std::nextafter(x, 1e9));
+        }
+    }
+    std::uint64_t state = 12345;
+    for (int i = 0; i < 200000; ++i) {
+        state = state * 6364136223846793005u + 1442695040888963407u;
+        agree(static_cast<double>(state >> 11) * 0x1p-53 * 65535.0);
+    }
+    agree(0.49999999999999994);  // where x + 0.5 would round up to 1
+    CHECK(same);
 }

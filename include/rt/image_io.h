@@ -87,6 +87,8 @@ struct SampleImage {
 // The raster's red, green and blue as `bits`-bit samples: round(max · encode_gamma(clamp(c,
 // 0, 1))), max = 255 or 65535; NaN counts as 0.
 SampleImage quantize(const Raster& raster, int bits, const Gamma& gamma);
+// What quantize rounds with: std::lround's answer for 0 <= x < 2^32 (halves away from zero).
+unsigned round_to_nearest(double x);
 
 // Everything that decides an image file's bytes apart from the pixels.
 struct ImageEncoding {

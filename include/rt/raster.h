@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "rt/large_pages.h"
 #include "rt/spectrum.h"
 
 namespace rt {
@@ -48,7 +49,9 @@ class Raster {
 
     int width_;
     int height_;
-    std::vector<double> values_;
+    // 24 MiB at 1024 x 1024: in 2 MiB pages where the kernel offers them, which are faulted
+    // in and zeroed several times faster than 4 KiB ones (rt/large_pages.h).
+    std::vector<double, LargeArrayAllocator<double>> values_;
 };
 
 }  // namespace rt

@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "accel/large_pages.h"
+#include "rt/large_pages.h"
 
 namespace rt {
 
@@ -56,9 +56,9 @@ void parallel_parts(std::size_t count, int threads, std::size_t minimum_part, Bo
 
 // An allocator that leaves elements default-initialised: for a trivial type, a vector's
 // resize() then neither writes them nor touches their pages. Large arrays get 2 MiB pages
-// where the kernel offers them (large_pages.h).
+// where the kernel offers them (rt/large_pages.h).
 template <class T>
-struct UninitializedAllocator : std::allocator<T> {
+struct UninitializedAllocator : LargeArrayAllocator<T> {
     template <class U>
     struct rebind {
         using other = UninitializedAllocator<U>;
@@ -66,12 +66,6 @@ struct UninitializedAllocator : std::allocator<T> {
     UninitializedAllocator() = default;
     template <class U>
     explicit UninitializedAllocator(const UninitializedAllocator<U>&) noexcept {}
-
-    T* allocate(std::size_t n) {
-        if (n > std::size_t(-1) / sizeof(T)) throw std::bad_array_new_length();
-        return static_cast<T*>(allocate_array(n * sizeof(T), alignof(T)));
-    }
-    void deallocate(T* p, std::size_t n) noexcept { free_array(p, n * sizeof(T), alignof(T)); }
 
     template <class U>
     void construct(U* p) noexcept {

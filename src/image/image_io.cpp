@@ -103,6 +103,14 @@ const std::string* ImageMetadata::find(std::string_view key) const {
     return nullptr;
 }
 
+// Without the library call (three million at 1024 x 1024, on one thread after the render's
+// several): x minus its whole part is exact, so the comparison with a half is too.
+unsigned round_to_nearest(double x) {
+    auto whole = static_cast<unsigned>(x);
+    if (x - whole >= 0.5) ++whole;
+    return whole;
+}
+
 SampleImage quantize(const Raster& raster, int bits, const Gamma& gamma) {
     if (bits != 8 && bits != 16) throw Error("images have 8 or 16 bits per sample");
     SampleImage image;
@@ -120,7 +128,7 @@ SampleImage quantize(const Raster& raster, int bits, const Gamma& gamma) {
                 double c = s[i];
                 if (!(c > 0)) c = 0;  // also NaN
                 if (c > 1) c = 1;
-                const auto v = static_cast<unsigned>(std::lround(max * encode_gamma(c, gamma)));
+                const unsigned v = round_to_nearest(max * encode_gamma(c, gamma));
                 if (bits == 16) *out++ = static_cast<std::uint8_t>(v >> 8);
                 *out++ = static_cast<std::uint8_t>(v);
             }

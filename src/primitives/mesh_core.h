@@ -65,7 +65,7 @@ static_assert(sizeof(PackedTriangle) == 80);
 struct Core {
     std::vector<Vec3> vertices;
     // In the hierarchy's leaf order (Hit::part indexes it), and packed, in the same order.
-    // Large arrays: in 2 MiB pages where the kernel offers them (accel/large_pages.h).
+    // Large arrays: in 2 MiB pages where the kernel offers them (rt/large_pages.h).
     std::vector<Triangle, UninitializedAllocator<Triangle>> triangles;
     std::vector<PackedTriangle, UninitializedAllocator<PackedTriangle>> packed;
     Bvh bvh;

@@ -6,6 +6,7 @@
 #include <functional>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace rt {
@@ -24,9 +25,11 @@ class Window {
     explicit Window(const PixelRect& rect) : rect_(rect), raster_(rect.width(), rect.height()) {}
     Spectrum at(int x, int y) const { return raster_.at(x - rect_.x0, y - rect_.y0); }
     void set(int x, int y, const Spectrum& s) { raster_.set(x - rect_.x0, y - rect_.y0, s); }
-    // The pixels of `part` (within this window) as a raster of their own.
-    Raster crop(const PixelRect& part) const {
-        if (part == rect_) return raster_;
+    // The pixels of `part` (within this window) as a raster of their own; the window's own
+    // raster, moved, when the part is all of it (a copy of a 1024 x 1024 raster, 24 MiB in
+    // fresh pages, was 4 % of the SPD teapot's whole run).
+    Raster crop(const PixelRect& part) && {
+        if (part == rect_) return std::move(raster_);
         Raster out(part.width(), part.height());
         for (int y = part.y0; y < part.y1; ++y)
             for (int x = part.x0; x < part.x1; ++x) out.set(x - part.x0, y - part.y0, at(x, y));
@@ -197,7 +200,7 @@ Raster render_region(const Scene& scene, const RenderOptions& options, const Pix
     }
     if (stats != nullptr)
         for (const Tracer& tracer : tracers) *stats += tracer.stats();
-    return raster.crop(region);
+    return std::move(raster).crop(region);
 }
 
 }  // namespace rt

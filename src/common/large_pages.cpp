@@ -1,4 +1,4 @@
-#include "accel/large_pages.h"
+#include "rt/large_pages.h"
 
 #include <new>
 
