@@ -445,3 +445,23 @@ TEST(quantize_rounds_as_lround_does_at_every_half_and_beside_it) {
     agree(0.49999999999999994);  // where x + 0.5 would round up to 1
     CHECK(same);
 }
+
+TEST(ppm_from_the_raster_is_the_header_and_quantize_samples) {
+    // encode_image quantizes straight into the file's bytes; encode_ppm of quantize is the
+    // same file, for both depths, with metadata and with a gamma.
+    std::vector<double> values;
+    std::uint64_t state = 99;
+    for (int i = 0; i < 37 * 23 * 3; ++i) {
+        state = state * 6364136223846793005u + 1442695040888963407u;
+        values.push_back(static_cast<double>(state >> 11) * 0x1p-53 * 1.4 - 0.2);
+    }
+    const rt::Raster r = raster_of(37, 23, values);
+    for (const int bits : {8, 16}) {
+        rt::ImageEncoding e;
+        e.bits = bits;
+        e.metadata.set("Software", "rt test");
+        CHECK(rt::encode_image(r, e) == rt::encode_ppm(rt::quantize(r, bits, {}), e.metadata));
+        e.gamma.kind = rt::Gamma::Kind::srgb;
+        CHECK(rt::encode_image(r, e) == rt::encode_ppm(rt::quantize(r, bits, e.gamma), e.metadata));
+    }
+}

@@ -87,6 +87,8 @@ struct SampleImage {
 // The raster's red, green and blue as `bits`-bit samples: round(max · encode_gamma(clamp(c,
 // 0, 1))), max = 255 or 65535; NaN counts as 0.
 SampleImage quantize(const Raster& raster, int bits, const Gamma& gamma);
+// The same samples written at `out`, which has room for them (3 or 6 bytes a pixel).
+void quantize_into(const Raster& raster, int bits, const Gamma& gamma, std::uint8_t* out);
 // What quantize rounds with: std::lround's answer for 0 <= x < 2^32 (halves away from zero).
 unsigned round_to_nearest(double x);
 
@@ -104,6 +106,8 @@ std::string encode_image(const Raster& raster, const ImageEncoding& encoding);
 
 // Binary PPM: P6 for three channels, P5 for one; maxval 255 or 65535.
 std::string encode_ppm(const SampleImage& image, const ImageMetadata& metadata);
+// The header encode_ppm writes before the samples (image.bytes is not read).
+std::string ppm_header(const SampleImage& image, const ImageMetadata& metadata);
 // PNG of any channel count and 8 or 16 bits, each row with the filter that makes its bytes
 // smallest in absolute value (the usual heuristic), compressed by rt's deflate.
 std::string encode_png(const SampleImage& image, const ImageMetadata& metadata);

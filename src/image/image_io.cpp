@@ -111,16 +111,29 @@ unsigned round_to_nearest(double x) {
     return whole;
 }
 
-SampleImage quantize(const Raster& raster, int bits, const Gamma& gamma) {
+namespace {
+
+void require_sample_bits(int bits) {
     if (bits != 8 && bits != 16) throw Error("images have 8 or 16 bits per sample");
+}
+
+}  // namespace
+
+SampleImage quantize(const Raster& raster, int bits, const Gamma& gamma) {
+    require_sample_bits(bits);
     SampleImage image;
     image.width = raster.width();
     image.height = raster.height();
     image.channels = 3;
     image.bits = bits;
     image.bytes.resize(image.row_bytes() * static_cast<std::size_t>(image.height));
-    const double max = image.max_value();
-    std::uint8_t* out = image.bytes.data();
+    quantize_into(raster, bits, gamma, image.bytes.data());
+    return image;
+}
+
+void quantize_into(const Raster& raster, int bits, const Gamma& gamma, std::uint8_t* out) {
+    require_sample_bits(bits);
+    const double max = bits == 16 ? 65535 : 255;
     for (int y = 0; y < raster.height(); ++y)
         for (int x = 0; x < raster.width(); ++x) {
             const Spectrum s = raster.at(x, y);
@@ -133,13 +146,22 @@ SampleImage quantize(const Raster& raster, int bits, const Gamma& gamma) {
                 *out++ = static_cast<std::uint8_t>(v);
             }
         }
-    return image;
 }
 
 std::string encode_image(const Raster& raster, const ImageEncoding& encoding) {
     switch (encoding.format) {
-        case ImageFormat::ppm:
-            return encode_ppm(quantize(raster, encoding.bits, encoding.gamma), encoding.metadata);
+        case ImageFormat::ppm: {
+            // The samples quantized straight into the file's bytes: no image of its own to
+            // fill and then copy (3 MiB of fresh pages each at 1024 x 1024).
+            require_sample_bits(encoding.bits);
+            const SampleImage shape{raster.width(), raster.height(), 3, encoding.bits, {}};
+            std::string out = ppm_header(shape, encoding.metadata);
+            const std::size_t header = out.size();
+            out.resize(header + shape.row_bytes() * static_cast<std::size_t>(shape.height));
+            quantize_into(raster, shape.bits, encoding.gamma,
+                          reinterpret_cast<std::uint8_t*>(out.data() + header));
+            return out;
+        }
         case ImageFormat::png:
             return encode_png(quantize(raster, encoding.bits, encoding.gamma), encoding.metadata);
         case ImageFormat::pfm:

@@ -16,6 +16,12 @@ bool ppm_key(std::string_view key) {
 }
 
 std::string encode_ppm(const SampleImage& image, const ImageMetadata& metadata) {
+    std::string out = ppm_header(image, metadata);
+    out.append(image.bytes.begin(), image.bytes.end());
+    return out;
+}
+
+std::string ppm_header(const SampleImage& image, const ImageMetadata& metadata) {
     if (image.channels != 3 && image.channels != 1)
         throw Error("PPM stores RGB or grey images, not " + std::to_string(image.channels) +
                     " channels");
@@ -36,7 +42,6 @@ std::string encode_ppm(const SampleImage& image, const ImageMetadata& metadata) 
     }
     out += std::to_string(image.width) + ' ' + std::to_string(image.height) + '\n' +
            std::to_string(image.max_value()) + '\n';
-    out.append(image.bytes.begin(), image.bytes.end());
     return out;
 }
 
