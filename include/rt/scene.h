@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "rt/large_pages.h"
 #include "rt/light.h"
 #include "rt/primitive.h"
 #include "rt/surface.h"
@@ -36,7 +37,9 @@ struct Object {
 
 struct Scene {
     Viewer viewer;
-    std::vector<Object> objects;
+    // In 2 MiB pages once it is large (rt/large_pages.h): a million objects are 48 MB,
+    // written, and moved each time the vector grows, as they are read.
+    std::vector<Object, LargeArrayAllocator<Object>> objects;
     std::vector<Light> lights;
     Spectrum ambient{0.0};  // the sum of the ambient lights (ID 103)
     // What a ray that hits nothing brings back (ID 115); without it, the ambient intensity.

@@ -50,7 +50,7 @@ FileMeshShape make(const MeshFile& file, long mode, int threads) {
             throw Error(place("vertex", i) + ": a coordinate is beyond +-" +
                         format_number(mesh_core::kMaxCoordinate));
     if (file.triangles.empty()) throw Error("it has no faces");
-    mesh.core.vertices = file.positions;
+    mesh.core.vertices.assign(file.positions.begin(), file.positions.end());
     FileMeshShape made;
     made.skipped =
         mesh_core::build(mesh.core, static_cast<long>(file.triangles.size()), threads,

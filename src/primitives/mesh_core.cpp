@@ -33,14 +33,14 @@ std::uint32_t read_index(SceneReader& reader, std::string_view name, long triang
     return static_cast<std::uint32_t>(value);
 }
 
-void finish(Core& core, std::vector<Triangle>& triangles, int threads) {
+void finish(Core& core, Triangles& triangles, int threads) {
     if (triangles.empty()) return;
     // The hierarchy numbers triangles in leaf order; store them in that order. It asks for
     // each triangle's box as it makes its reference: cheaper than storing them (48 bytes a
     // triangle of fresh memory to touch).
     struct Source {
         const Core& core;
-        const std::vector<Triangle>& triangles;
+        const Triangles& triangles;
     } const source{core, triangles};
     core.bvh = Bvh(triangles.size(),
                    {&source,

@@ -62,11 +62,14 @@ struct PackedTriangle {
 };
 static_assert(sizeof(PackedTriangle) == 80);
 
+// Triangles as a mesh holds them, and as its build gathers them.
+using Triangles = std::vector<Triangle, UninitializedAllocator<Triangle>>;
+
 struct Core {
-    std::vector<Vec3> vertices;
+    std::vector<Vec3, UninitializedAllocator<Vec3>> vertices;
     // In the hierarchy's leaf order (Hit::part indexes it), and packed, in the same order.
     // Large arrays: in 2 MiB pages where the kernel offers them (rt/large_pages.h).
-    std::vector<Triangle, UninitializedAllocator<Triangle>> triangles;
+    Triangles triangles;
     std::vector<PackedTriangle, UninitializedAllocator<PackedTriangle>> packed;
     Bvh bvh;
     Bounds box;
@@ -150,11 +153,11 @@ Bounds bounds(const void* shape);
 inline bool many_parts(const void*) { return true; }
 
 // Out of line: the part of build that does not depend on where the indices come from.
-void finish(Core& core, std::vector<Triangle>& triangles, int threads);
+void finish(Core& core, Triangles& triangles, int threads);
 
 template <class Next>
 std::size_t build(Core& core, long triangle_count, int threads, Next&& next) {
-    std::vector<Triangle> triangles;
+    Triangles triangles;
     triangles.reserve(static_cast<std::size_t>(std::min(triangle_count, kMaxReserve)));
     std::size_t skipped = 0;
     for (long i = 0; i < triangle_count; ++i) {
