@@ -1,10 +1,16 @@
 // The reader: lexical rules, structure, and every error of the contract with its place.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "error_cases.h"
+#include "rt/shape_arena.h"
 #include "scene_util.h"
 
 using namespace rt;
@@ -178,4 +184,48 @@ TEST(reading_in_chunks_keeps_every_place) {
         CHECK_CONTAINS(scene_error(text + " 103 1 " + std::string(5000, '2')),
                        join("test.in:", line, ":8: token longer than 4096 characters"));
     }
+}
+
+TEST(many_spheres_keep_their_parameters_in_the_arena_after_the_reader) {
+    // 20,000 spheres fill several of the arena's blocks (16 KiB, doubling to 4 MiB); the
+    // scene outlives its reader, and every sphere's bounds are its own.
+    std::string text = kViewer + "105 100 0.5 0.5 0.5 0 1 1 0 1\n";
+    for (int i = 0; i < 20000; ++i)
+        text += "1 " + std::to_string(0.25 + i % 7) + " " + std::to_string(i) + " " +
+                std::to_string(-i) + " 3 106\n";
+    // Planes and triangles between them: shapes of other sizes in the same blocks.
+    text += "2 -5 0 1 0 106\n5 0 0 0 1 0 0 0 1 0 106\n";
+    const Scene scene = parse_scene(text);
+    CHECK_EQ(scene.objects.size(), 20002u);
+    bool same = true;
+    for (int i = 0; i < 20000; ++i) {
+        const Bounds b = scene.objects[static_cast<std::size_t>(i)].shape.bounds();
+        const double r = 0.25 + i % 7;
+        same =
+            same && b.min.x == i - r && b.max.x == i + r && b.min.y == -i - r && b.max.z == 3 + r;
+    }
+    CHECK(same);
+    // A copy of the scene keeps the shapes alive after the first is gone.
+    std::optional<Scene> first = scene;
+    const Scene second = *first;
+    first.reset();
+    CHECK_EQ(second.objects[19999].shape.bounds().max.x, 19999 + 0.25 + 19999 % 7);
+}
+
+TEST(the_arena_places_shapes_apart_and_aligned) {
+    ShapeArena arena;
+    std::vector<std::pair<std::uintptr_t, std::size_t>> placed;
+    for (int i = 0; i < 100000; ++i) {
+        const std::size_t bytes = 8 + static_cast<std::size_t>(i * 37 % 249);
+        const std::size_t alignment = std::size_t{8} << (i % 4);  // 8 to 64
+        auto* p = static_cast<unsigned char*>(arena.place(bytes, alignment));
+        p[0] = p[bytes - 1] = static_cast<unsigned char>(i);  // writable to its last byte
+        CHECK_EQ(reinterpret_cast<std::uintptr_t>(p) % alignment, 0u);
+        placed.emplace_back(reinterpret_cast<std::uintptr_t>(p), bytes);
+    }
+    std::sort(placed.begin(), placed.end());
+    bool apart = true;
+    for (std::size_t i = 1; i < placed.size(); ++i)
+        apart = apart && placed[i - 1].first + placed[i - 1].second <= placed[i].first;
+    CHECK(apart);
 }

@@ -16,6 +16,7 @@
 #include "rt/limits.h"  // the bounds the reader holds a scene to
 #include "rt/primitive.h"
 #include "rt/scene.h"
+#include "rt/shape_arena.h"
 #include "rt/surface.h"
 
 namespace rt {
@@ -123,6 +124,13 @@ class SceneReader {
     [[noreturn]] void fail(Location where, std::string_view message) const;
     std::filesystem::path resolve(const std::string& path) const;
 
+    // A primitive's parameters as its shape holds them: a small one in this reader's arena
+    // (rt/shape_arena.h), which the scene's shapes keep alive, others allocated alone.
+    template <class T>
+    ShapeData shape_data(T value) {
+        return make_shape_data(shape_arena_, std::move(value));
+    }
+
   private:
     void add_input(const std::filesystem::path& resolved, const char* role);
 
@@ -161,6 +169,7 @@ class SceneReader {
     std::unique_ptr<Lexer> lexer_;
     std::unique_ptr<TextureCache> textures_;
     std::unique_ptr<MeshFileCache> mesh_files_;
+    std::shared_ptr<ShapeArena> shape_arena_;  // made on first use
     std::vector<SceneInput> inputs_;
     std::vector<std::string> notes_;  // become Scene::notes
     std::filesystem::path base_dir_;

@@ -17,7 +17,7 @@ ShapeData read(SceneReader& reader) {
     if (!(inner < outer))
         reader.fail(inner_at, "annulus inner radius must be less than the outer radius " +
                                   format_number(outer) + ", got " + format_number(inner));
-    return std::make_shared<const Ring>(Ring::make(centre, n, outer, inner));
+    return reader.shape_data(Ring::make(centre, n, outer, inner));
 }
 
 bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {

@@ -29,7 +29,7 @@ ShapeData read(SceneReader& reader) {
                                             "component, got ") +
                                     kAxisNames[static_cast<std::size_t>(k)] + " max " +
                                     format_number(max[k]) + " <= min " + format_number(min[k]));
-    return std::make_shared<const Box>(Box{min, max});
+    return reader.shape_data(Box{min, max});
 }
 
 bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {

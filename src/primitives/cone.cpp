@@ -27,7 +27,7 @@ ShapeData read(SceneReader& reader) {
     const AxialExtent extent = read_axial_extent(reader, "cone", "apex");
     // 1 - alpha^2 as a product, exact enough even when alpha is close to 1.
     const double sin2 = (1 - alpha) * (1 + alpha);
-    return std::make_shared<const Cone>(Cone{extent, alpha * alpha, sin2, std::sqrt(sin2) / alpha});
+    return reader.shape_data(Cone{extent, alpha * alpha, sin2, std::sqrt(sin2) / alpha});
 }
 
 bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {

@@ -20,7 +20,7 @@ struct Cylinder {
 ShapeData read(SceneReader& reader) {
     const double radius = reader.positive("cylinder radius");
     const AxialExtent extent = read_axial_extent(reader, "cylinder", "point on axis");
-    return std::make_shared<const Cylinder>(Cylinder{extent, radius, radius * radius});
+    return reader.shape_data(Cylinder{extent, radius, radius * radius});
 }
 
 bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {

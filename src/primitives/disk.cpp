@@ -12,7 +12,7 @@ ShapeData read(SceneReader& reader) {
     const Vec3 centre = reader.vec3("disk centre");
     const Vec3 n = reader.direction("disk normal");
     const double radius = reader.positive("disk radius");
-    return std::make_shared<const Ring>(Ring::make(centre, n, radius, 0));
+    return reader.shape_data(Ring::make(centre, n, radius, 0));
 }
 
 bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {

@@ -17,7 +17,7 @@ ShapeData read(SceneReader& reader) {
     for (const Vec3& corner : {v, v + a, v + b, v + a + b}) box.expand(corner);
     const auto patch = EdgePatch::make(v, a, b, box);
     if (!patch) reader.fail(at, "parallelogram has zero area (its edges are parallel or zero)");
-    return std::make_shared<const EdgePatch>(*patch);
+    return reader.shape_data(*patch);
 }
 
 bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {

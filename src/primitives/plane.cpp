@@ -19,7 +19,7 @@ ShapeData read(SceneReader& reader) {
     const double distance = d / len;
     if (!std::isfinite(distance))
         reader.fail(normal_at, "plane D divided by the normal's length must be finite");
-    return std::make_shared<const Plane>(Plane{n, distance});
+    return reader.shape_data(Plane{n, distance});
 }
 
 bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {

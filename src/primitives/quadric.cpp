@@ -298,7 +298,7 @@ ShapeData read(SceneReader& reader) {
     const Wide hz = Wide(q.xz) * px + Wide(q.yz) * py + Wide(q.zz) * pz + g.z;
     const Wide value = px * (hx + g.x) + py * (hy + g.y) + pz * (hz + g.z) + k[9];
     const Vec3 linear{hx.value(), hy.value(), hz.value()};
-    return std::make_shared<const Quadric>(
+    return reader.shape_data(
         Quadric{q, linear, value.value(), p0, clip, bounds, has_visible, solid_box(extent)});
 }
 

@@ -17,7 +17,7 @@ struct Sphere {
 ShapeData read(SceneReader& reader) {
     const double radius = reader.positive("sphere radius");
     const Vec3 centre = reader.vec3("sphere centre");
-    return std::make_shared<const Sphere>(Sphere{radius, {centre, radius * radius}});
+    return reader.shape_data(Sphere{radius, {centre, radius * radius}});
 }
 
 bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {

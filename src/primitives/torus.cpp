@@ -94,7 +94,7 @@ ShapeData read(SceneReader& reader) {
     const Vec3 axis = reader.direction("torus axis");
     const double major = reader.positive("torus major radius");
     const double minor = reader.positive("torus minor radius");
-    return std::make_shared<const Torus>(Torus{centre, axis, major, minor, major + minor});
+    return reader.shape_data(Torus{centre, axis, major, minor, major + minor});
 }
 
 bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {

@@ -34,7 +34,7 @@ ShapeData read(SceneReader& reader) {
     // From the sorted vertices, as the mesh computes it.
     t.normal = face_normal(t.sorted[0], t.sorted[1], t.sorted[2]);
     if (s.flipped) t.normal = -t.normal;
-    return std::make_shared<const Triangle>(t);
+    return reader.shape_data(t);
 }
 
 bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
