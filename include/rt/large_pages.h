@@ -2,9 +2,10 @@
 // where it offers them (Linux's transparent huge pages, asked for with madvise). A fresh page is
 // zeroed by the kernel on its first touch, and on a virtual machine each 4 KiB fault is a trip
 // through the hypervisor: on the machine these figures come from, touching 256 MB took 0.60-0.70 s
-// in 4 KiB pages and 0.02-0.37 s in 2 MiB ones, and spheres-1m's whole index build went from 0.76
-// to 0.35 s (docs/performance.md, "Building the hierarchy"). Fewer pages also means fewer TLB
-// misses while rendering. Elsewhere, and for small arrays, this is operator new.
+// in 4 KiB pages and 0.02-0.37 s in 2 MiB ones, and spheres-1m's index build (once its memory
+// was not new to the machine) went from 0.71 to 0.34 s (docs/performance.md, "Fresh memory").
+// Fewer pages also means fewer TLB misses while rendering. Elsewhere, and for small arrays,
+// this is operator new.
 #pragma once
 
 #include <cstddef>
