@@ -220,10 +220,9 @@ class Builder {
     void bin(const Range& range, Binned& binned);
     SahSplit best_split(const Range& range, const Binned& binned) const;
     // Moves the references of the bins up to split.last_first to the front of the range,
-    // putting each in its child's bins on the way (unless the node is to be a leaf, whose
-    // children are never built); the children's boxes come from the bins.
+    // putting each in its child's bins on the way; the children's boxes come from the bins.
     void partition(const Range& range, const Binned& binned, const SahSplit& split, int depth,
-                   bool leaf, Children& children);
+                   Children& children);
 
     Range measured(std::uint32_t begin, std::uint32_t end) const;
     // Splits in the middle of the range, for primitives no position separates.
@@ -334,7 +333,7 @@ Builder::SahSplit Builder::best_split(const Range& range, const Binned& binned) 
 }
 
 void Builder::partition(const Range& range, const Binned& binned, const SahSplit& split, int depth,
-                        bool leaf, Children& children) {
+                        Children& children) {
     // The children as the bins give them, before a reference moves.
     Range& first = children.first;
     Range& second = children.second;
@@ -348,8 +347,8 @@ void Builder::partition(const Range& range, const Binned& binned, const SahSplit
         if (b <= split.last_first) first.end += bin.count;
     }
     second.begin = first.end;
-    children.first_bins.reset(leaf ? BinPlan{} : plan_for(first, depth + 1));
-    children.second_bins.reset(leaf ? BinPlan{} : plan_for(second, depth + 1));
+    children.first_bins.reset(plan_for(first, depth + 1));
+    children.second_bins.reset(plan_for(second, depth + 1));
     // Hoare's scheme: grow the first part from the front and the second from the back,
     // swapping only a pair that is on the wrong sides; each reference goes into its child's
     // bins when its side is settled. On local copies of the plans: the stores cannot then be
@@ -372,6 +371,47 @@ void Builder::partition(const Range& range, const Binned& binned, const SahSplit
     Bin* const first_bins = children.first_bins.bins;
     Bin* const second_bins = children.second_bins.bins;
     std::uint32_t front = range.begin, back = range.end;
+    // Blocks first (Edelkamp and Weiss's BlockQuicksort): each side notes, without a branch,
+    // which of its next kBlock references belong on the other side, and those are swapped in
+    // pairs. Hoare's loop below branches on every reference's side, which at most levels
+    // is a coin toss the processor mispredicts half the time. The swaps only reorder
+    // references within a child, whose bins (and so the tree) do not depend on that order.
+    constexpr std::uint32_t kBlock = 64;
+    std::uint8_t misplaced_front[kBlock], misplaced_back[kBlock];
+    std::uint32_t front_count = 0, front_done = 0, back_count = 0, back_done = 0;
+    while (back - front >= 2 * kBlock) {
+        if (front_count == front_done) {
+            front_count = front_done = 0;
+            for (std::uint32_t i = 0; i < kBlock; ++i) {
+                misplaced_front[front_count] = static_cast<std::uint8_t>(i);
+                front_count += goes_first(refs[front + i]) ? 0 : 1;
+            }
+        }
+        if (back_count == back_done) {
+            back_count = back_done = 0;
+            for (std::uint32_t i = 0; i < kBlock; ++i) {
+                misplaced_back[back_count] = static_cast<std::uint8_t>(i);
+                back_count += goes_first(refs[back - 1 - i]) ? 1 : 0;
+            }
+        }
+        const std::uint32_t pairs = std::min(front_count - front_done, back_count - back_done);
+        for (std::uint32_t k = 0; k < pairs; ++k)
+            std::swap(refs[front + misplaced_front[front_done + k]],
+                      refs[back - 1 - misplaced_back[back_done + k]]);
+        front_done += pairs;
+        back_done += pairs;
+        // A block whose misplaced references have all gone is settled: into the bins.
+        if (front_count == front_done) {
+            for (std::uint32_t i = 0; i < kBlock; ++i) put(first_plan, first_bins, refs[front + i]);
+            front += kBlock;
+        }
+        if (back_count == back_done) {
+            for (std::uint32_t i = 0; i < kBlock; ++i)
+                put(second_plan, second_bins, refs[back - 1 - i]);
+            back -= kBlock;
+        }
+    }
+    // What is left (under two blocks, and a block not yet settled) by Hoare's loop.
     for (;;) {
         while (front < back && goes_first(refs[front])) {
             put(first_plan, first_bins, refs[front++]);
@@ -455,18 +495,17 @@ void Builder::build(const Range& range, const Binned* binned, int depth) {
         binned = &own;
     }
     const SahSplit split = best_split(range, *binned);
-    // Partitioned even when the node becomes a leaf: the order of its references is then
-    // the one this build has always given. A leaf's children are not binned: half the
-    // nodes are leaves, and binning was most of their time.
-    const bool leaf = fits_leaf && !(split.cost < count);
-    Children children;
-    if (split.found) partition(range, *binned, split, depth, leaf, children);
-    if (leaf) return make_leaf(node, range);
+    // A leaf is not partitioned: the order of the references within a leaf changes no
+    // answer (ties are judged by the object's place in the file, not the leaf's), and half
+    // the nodes are leaves.
+    if (fits_leaf && !(split.cost < count)) return make_leaf(node, range);
     if (!split.found) {
         // Every centroid in one bin, or areas beyond a double: split evenly.
         const auto [first, second] = median_split(range, axis);
         return build_children(node, first, nullptr, second, nullptr, depth);
     }
+    Children children;
+    partition(range, *binned, split, depth, children);
     const auto pre = [](const Binned& b) { return b.plan.count > 0 ? &b : nullptr; };
     build_children(node, children.first, pre(children.first_bins), children.second,
                    pre(children.second_bins), depth);
@@ -555,38 +594,49 @@ std::uint32_t Bvh::collapse_into(std::uint32_t binary, std::uint32_t index) {
 
 void Bvh::collapse(int threads) {
     if (nodes_.empty()) return;
-    if (!nodes_[0].is_leaf()) {
-        // The root's interior children's subtrees are counted first: the array is then
-        // allocated at its size and written once (a growing one would copy itself each time
-        // it doubled), and each subtree's place is known, so that they can be written on
-        // several threads, into an array whose pages they are the first to touch.
-        std::uint32_t children[WideNode::kWidth];
-        const int size = wide_children(0, children);
-        WideNode root = wide_node(children, size);
-        std::uint32_t subtrees[WideNode::kWidth], places[WideNode::kWidth];
-        int interior = 0;
-        std::size_t total = 1;
-        for (int i = 0; i < size; ++i)
-            if (!nodes_[children[i]].is_leaf()) {
-                root.child[i] = places[interior] = static_cast<std::uint32_t>(total);
-                subtrees[interior++] = children[i];
-                total += wide_count_below(children[i]);
-            }
-        wide_.resize(total);
-        wide_[0] = root;
-        // Below this many wide nodes a thread costs more than it saves.
-        constexpr std::size_t kParallelCollapseMinimum = 16384;
-        parallel_parts(static_cast<std::size_t>(interior),
-                       total < kParallelCollapseMinimum ? 1 : threads, 1,
-                       [&](std::size_t begin, std::size_t end) {
-                           for (std::size_t k = begin; k < end; ++k)
-                               collapse_into(subtrees[k], places[k]);
-                       });
-    } else {
+    if (nodes_[0].is_leaf()) {
         // A tree that is one leaf: a wide node with that leaf as its only child.
         const std::uint32_t only[WideNode::kWidth] = {0};
         wide_.push_back(wide_node(only, 1));
+        return;
     }
+    // Below this many binary nodes a thread costs more than it saves.
+    constexpr std::size_t kParallelCollapseMinimum = 65536;
+    if (threads <= 1 || nodes_.size() < kParallelCollapseMinimum) {
+        // One thread writes the whole tree depth first into an array of the largest size it
+        // can need (every wide node takes the place of at least one interior binary node;
+        // pages never written cost no memory), then cut to what it wrote: no count first.
+        wide_.resize((nodes_.size() - 1) / 2);
+        wide_.resize(collapse_into(0, 0));
+        return;
+    }
+    // On several threads the root's interior children's subtrees are counted first (on the
+    // threads too), so that each subtree's place is known and they can be written at once,
+    // into an array allocated at its size, whose pages they are the first to touch.
+    std::uint32_t children[WideNode::kWidth];
+    const int size = wide_children(0, children);
+    WideNode root = wide_node(children, size);
+    std::uint32_t subtrees[WideNode::kWidth], places[WideNode::kWidth];
+    std::size_t counts[WideNode::kWidth];
+    int interior = 0;
+    for (int i = 0; i < size; ++i)
+        if (!nodes_[children[i]].is_leaf()) subtrees[interior++] = children[i];
+    const auto each_subtree = [&](auto&& body) {
+        parallel_parts(static_cast<std::size_t>(interior), threads, 1,
+                       [&](std::size_t begin, std::size_t end) {
+                           for (std::size_t k = begin; k < end; ++k) body(k);
+                       });
+    };
+    each_subtree([&](std::size_t k) { counts[k] = wide_count_below(subtrees[k]); });
+    std::size_t total = 1;
+    for (int i = 0, k = 0; i < size; ++i)
+        if (!nodes_[children[i]].is_leaf()) {
+            root.child[i] = places[k] = static_cast<std::uint32_t>(total);
+            total += counts[k++];
+        }
+    wide_.resize(total);
+    wide_[0] = root;
+    each_subtree([&](std::size_t k) { collapse_into(subtrees[k], places[k]); });
 }
 
 Bvh::Bvh(std::size_t count, BoundsSource source, int threads, double node_cost) {
