@@ -59,8 +59,39 @@ std::size_t check_subtree(const Bvh& bvh, std::span<const Bounds> boxes, std::ui
            check_subtree(bvh, boxes, second, depth + 1, deepest);
 }
 
+// A box's centre as the build computes it (halves first, then rounded to a float).
+float build_centre(const Bounds& b, int axis) {
+    return static_cast<float>(b.min[axis] * 0.5 + b.max[axis] * 0.5);
+}
+
+// The leaf-order places [first, end) below `index`, after checking that an interior node's
+// two children are a split by position: their places are adjacent, and along some axis no
+// centre of the first child lies beyond any of the second's. A reference the partition left
+// on the wrong side would break that.
+std::pair<std::uint32_t, std::uint32_t> check_split(const Bvh& bvh, std::span<const Bounds> boxes,
+                                                    std::uint32_t index) {
+    const BvhNode& node = bvh.nodes()[index];
+    if (node.is_leaf()) return {node.offset, node.offset + node.count};
+    const auto first = check_split(bvh, boxes, index + 1);
+    const auto second = check_split(bvh, boxes, node.offset);
+    CHECK_EQ(first.second, second.first);
+    bool separated = false;
+    for (int axis = 0; axis < 3 && !separated; ++axis) {
+        float first_max = -HUGE_VALF, second_min = HUGE_VALF;
+        for (std::uint32_t i = first.first; i < first.second; ++i)
+            first_max = std::max(first_max, build_centre(boxes[bvh.order()[i]], axis));
+        for (std::uint32_t i = second.first; i < second.second; ++i)
+            second_min = std::min(second_min, build_centre(boxes[bvh.order()[i]], axis));
+        separated = first_max <= second_min;
+    }
+    CHECK(separated);
+    return {first.first, second.second};
+}
+
 void check_structure(std::span<const Bounds> boxes) {
     const Bvh bvh(boxes);
+    const auto whole = check_split(bvh, boxes, 0);
+    CHECK(whole.first == 0 && whole.second == boxes.size());
     // Every primitive appears in the leaves exactly once.
     std::vector<std::uint32_t> order(bvh.order().begin(), bvh.order().end());
     std::sort(order.begin(), order.end());
@@ -99,7 +130,8 @@ bool clearly_crosses(const Ray& ray, const Bounds& b) {
 
 TEST(structure_of_random_boxes) {
     Random random(1);
-    for (const std::size_t n : {1, 2, 3, 9, 100, 5000})
+    // From 128 references on, a node is partitioned in blocks of 64 on each side first.
+    for (const std::size_t n : {1, 2, 3, 9, 100, 127, 128, 129, 200, 5000, 30000})
         check_structure(random_boxes(random, n, 10, 1));
 }
 
