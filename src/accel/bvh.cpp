@@ -216,7 +216,13 @@ class Builder {
     };
 
     // The plan of a range at a depth: none (count 0) where build() splits it otherwise.
-    static BinPlan plan_for(const Range& range, int depth);
+    BinPlan plan_for(const Range& range, int depth) const;
+    // Whether a node of `count` references is a leaf whatever its split: its SAH cost as a
+    // leaf (count) is at most the node cost, which any split's cost exceeds or equals. Its
+    // references are then not binned (by its parent) nor priced.
+    bool surely_leaf(std::uint32_t count) const {
+        return count <= Bvh::kMaxLeafSize && count <= node_cost_;
+    }
     void bin(const Range& range, Binned& binned);
     SahSplit best_split(const Range& range, const Binned& binned) const;
     // Moves the references of the bins up to split.last_first to the front of the range,
@@ -268,9 +274,10 @@ void Builder::make_leaf(std::size_t node, const Range& range) {
     nodes_[node].count = static_cast<std::uint16_t>(range.count());
 }
 
-BinPlan Builder::plan_for(const Range& range, int depth) {
+BinPlan Builder::plan_for(const Range& range, int depth) const {
     BinPlan plan;
-    if (range.count() < 2 || depth >= Bvh::kMaxSahDepth) return plan;
+    if (range.count() < 2 || depth >= Bvh::kMaxSahDepth || surely_leaf(range.count()))
+        return plan;
     const Spread spread(range.centres);
     const double extent = spread.extent[spread.axis];
     if (!(extent > 0) || !std::isfinite(extent)) return plan;
@@ -488,6 +495,8 @@ void Builder::build(const Range& range, const Binned* binned, int depth) {
         const auto [first, second] = median_split(range, axis);
         return build_children(node, first, nullptr, second, nullptr, depth);
     }
+    // At node cost 2 (a mesh, or spheres only) that is every node of two references.
+    if (surely_leaf(count)) return make_leaf(node, range);
     Binned own;
     if (binned == nullptr) {
         own.reset(plan_for(range, depth));
