@@ -78,39 +78,42 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
     });
     entries_.reserve(objects.size());
     entries_.resize(bounded_count_);
-    if (spheres > 0) spheres_.resize(bounded_count_);
     parallel_parts(bounded_count_, threads, kPart, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t j = begin; j < end; ++j) {
-            const std::uint32_t object = bounded[j];
-            const std::uint32_t i = place[j];
-            const Entry& e = entries_[i] = entry(objects[object], object);
-            if (e.sphere) spheres_[i] = objects[object].shape.functions->sphere(e.data);
-        }
+        for (std::size_t j = begin; j < end; ++j)
+            entries_[place[j]] = entry(objects[bounded[j]], bounded[j]);
     });
     entries_.insert(entries_.end(), unbounded.begin(), unbounded.end());
 }
 
 ObjectIndex::Entry ObjectIndex::entry(const Object& object, std::uint32_t index) {
     const Shape& shape = object.shape;
-    return {.intersect = shape.intersect_function(),
-            .intersect_any = shape.any_hit_function(),
-            .data = shape.data.get(),
-            .object = index,
-            .sphere = shape.functions->sphere != nullptr,
-            .many_parts = shape.many_parts()};
+    Entry e{};
+    e.object = index;
+    e.many_parts = shape.many_parts();
+    e.sphere = shape.functions->sphere != nullptr;
+    if (e.sphere) {
+        const SphereParameters s = shape.functions->sphere(shape.data.get());
+        e.test.sphere[0] = s.centre.x;
+        e.test.sphere[1] = s.centre.y;
+        e.test.sphere[2] = s.centre.z;
+        e.test.sphere[3] = s.radius_squared;
+    } else {
+        e.test.call = {shape.intersect_function(), shape.any_hit_function(), shape.data.get()};
+    }
+    return e;
 }
 
 bool ObjectIndex::hits(std::uint32_t i, const Ray& ray, Interval range, Hit& hit) const {
     const Entry& e = entries_[i];
-    return e.sphere ? sphere_hit(spheres_[i], ray, range, hit)
-                    : e.intersect(e.data, ray, range, hit);
+    return e.sphere ? sphere_hit(e.sphere_parameters(), ray, range, hit)
+                    : e.test.call.intersect(e.test.call.data, ray, range, hit);
 }
 
 bool ObjectIndex::blocks(std::uint32_t i, const Ray& ray, Interval range, Hit& scratch) const {
     const Entry& e = entries_[i];
-    if (!e.sphere) return e.intersect_any(e.data, ray, range, scratch);
+    if (!e.sphere) return e.test.call.intersect_any(e.test.call.data, ray, range, scratch);
     double t = 0;
-    return sphere_crossing(spheres_[i], ray, range, t);
+    return sphere_crossing(e.sphere_parameters(), ray, range, t);
 }
 
 bool ObjectIndex::closest(const Ray& ray, Interval range, Found& found,

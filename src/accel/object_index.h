@@ -48,18 +48,30 @@ class ObjectIndex {
     // No entry, and no object: the largest 32-bit number, which indexes neither.
     static constexpr std::uint32_t kNone = LastBlocker{}.entry;
 
-    // What a test needs, stored contiguously in the order the leaves visit them.
+    // What a test needs, stored contiguously in the order the leaves visit them: 40 bytes,
+    // one record per object wherever it is tested from.
     struct Entry {
-        IntersectFn* intersect;
-        IntersectFn* intersect_any;  // for shadow rays (Shape::any_hit_function)
-        const void* data;
+        // A sphere's centre and squared radius, tested inline (its table row's sphere column)
+        // without a call and without a load from anywhere else; any other object's functions
+        // and parameters, tested through the table.
+        union Test {
+            struct Call {
+                IntersectFn* intersect;
+                IntersectFn* intersect_any;  // for shadow rays (Shape::any_hit_function)
+                const void* data;
+            } call;
+            double sphere[4];  // the centre's x, y and z, then the squared radius
+        } test;
         std::uint32_t object;
-        // A sphere, tested inline from spheres_ (its table row's sphere column) instead of
-        // through intersect: no call, and no load of its parameters from elsewhere.
-        bool sphere;
+        bool sphere;  // which of test's two is there
         // One test searches many parts (Shape::many_parts: a mesh, CSG, or a frame of one).
         bool many_parts;
+
+        SphereParameters sphere_parameters() const {
+            return {{test.sphere[0], test.sphere[1], test.sphere[2]}, test.sphere[3]};
+        }
     };
+    static_assert(sizeof(Entry) == 40);
 
     static Entry entry(const Object& object, std::uint32_t index);
     // Whether entry i is hit in range (hit as intersect leaves it).
@@ -70,9 +82,6 @@ class ObjectIndex {
     // The bounded objects in leaf order, then the unbounded ones in file order. Allocated
     // without being written first, so that the threads filling it touch its pages.
     std::vector<Entry, UninitializedAllocator<Entry>> entries_;
-    // Beside each bounded entry in leaf order, its sphere's parameters where it is a sphere
-    // (unused otherwise); empty in a scene without spheres.
-    std::vector<SphereParameters, UninitializedAllocator<SphereParameters>> spheres_;
     std::size_t bounded_count_ = 0;
     std::size_t object_count_ = 0;
 };
