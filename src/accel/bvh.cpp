@@ -480,25 +480,25 @@ void Builder::build(const Range& range, const Binned* binned, int depth) {
     const std::uint32_t count = range.count();
     if (count == 1) return make_leaf(node, range);
 
-    const Spread spread(range.centres);
-    const int axis = spread.axis;
-    const double extent = spread.extent[axis];
     const bool fits_leaf = count <= Bvh::kMaxLeafSize;
-    if (!(extent > 0)) {
-        // All centroids in one place: no split separates them, so a leaf or an even split.
-        if (fits_leaf) return make_leaf(node, range);
-        const std::uint32_t mid = range.begin + count / 2;
-        return build_children(node, measured(range.begin, mid), nullptr, measured(mid, range.end),
-                              nullptr, depth);
-    }
-    if (depth >= Bvh::kMaxSahDepth || !std::isfinite(extent)) {
-        const auto [first, second] = median_split(range, axis);
-        return build_children(node, first, nullptr, second, nullptr, depth);
-    }
-    // At node cost 2 (a mesh, or spheres only) that is every node of two references.
-    if (surely_leaf(count)) return make_leaf(node, range);
     Binned own;
     if (binned == nullptr) {
+        // A node its parent planned (binned) passed these checks in plan_for already.
+        const Spread spread(range.centres);
+        const double extent = spread.extent[spread.axis];
+        if (!(extent > 0)) {
+            // All centroids in one place: no split separates them, so a leaf or an even split.
+            if (fits_leaf) return make_leaf(node, range);
+            const std::uint32_t mid = range.begin + count / 2;
+            return build_children(node, measured(range.begin, mid), nullptr,
+                                  measured(mid, range.end), nullptr, depth);
+        }
+        if (depth >= Bvh::kMaxSahDepth || !std::isfinite(extent)) {
+            const auto [first, second] = median_split(range, spread.axis);
+            return build_children(node, first, nullptr, second, nullptr, depth);
+        }
+        // At node cost 2 (a mesh, or spheres only) that is every node of two references.
+        if (surely_leaf(count)) return make_leaf(node, range);
         own.reset(plan_for(range, depth));
         bin(range, own);
         binned = &own;
@@ -510,7 +510,7 @@ void Builder::build(const Range& range, const Binned* binned, int depth) {
     if (fits_leaf && !(split.cost < count)) return make_leaf(node, range);
     if (!split.found) {
         // Every centroid in one bin, or areas beyond a double: split evenly.
-        const auto [first, second] = median_split(range, axis);
+        const auto [first, second] = median_split(range, binned->plan.axis);
         return build_children(node, first, nullptr, second, nullptr, depth);
     }
     Children children;
