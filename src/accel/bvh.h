@@ -313,10 +313,11 @@ class Bvh {
 };
 
 // Nodes are visited depth first. At a wide node all children's boxes are tested at once; a lone
-// child entered is taken at once, several go on a small fixed stack with their entry
-// distances (for Nearest, the farthest first, so the nearest is taken next) and wait; a
-// waiting child is dropped without another test once a hit nearer than its entry has been
-// found. leaf(first, count) returns true to stop; walk returns whether one did.
+// child entered is taken at once; of several, for Nearest the nearest is taken at once and
+// the others go on a small fixed stack with their entry distances, the farthest first (for
+// any, all go on the stack), and wait; a waiting child is dropped without another test once
+// a hit nearer than its entry has been found. leaf(first, count) returns true to stop; walk
+// returns whether one did.
 template <Bvh::BoxTest Test, bool Nearest, class Leaf>
 bool Bvh::walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) const {
     if (wide_.empty()) return false;
@@ -388,18 +389,32 @@ bool Bvh::walk_nodes(const Ray& ray, double t_min, const double& t_max, Leaf&& l
                 continue;
             }
             if (leaf(node.child[i], node.count[i])) return true;
-        } else {
-            // Push the children entered, farthest first: insertion by entry distance.
+        } else if (lanes != 0 && Nearest) {
+            // Push the children entered but the nearest, farthest first (insertion by entry
+            // distance), and go on into the nearest at once: it would be popped next.
             const int base = top;
-            for (; lanes != 0; lanes &= lanes - 1) {
-                const int i = std::countr_zero(lanes);
+            int nearest = std::countr_zero(lanes);
+            for (lanes &= lanes - 1; lanes != 0; lanes &= lanes - 1) {
+                int i = std::countr_zero(lanes);
+                if (t_enter[i] < t_enter[nearest]) std::swap(i, nearest);
                 const Pending p{node.child[i], node.count[i], t_enter[i]};
                 int at = top++;
-                while (Nearest && at > base && stack[at - 1].t_enter < p.t_enter) {
+                while (at > base && stack[at - 1].t_enter < p.t_enter) {
                     stack[at] = stack[at - 1];
                     --at;
                 }
                 stack[at] = p;
+            }
+            if (node.count[nearest] == 0) {
+                current = node.child[nearest];
+                continue;
+            }
+            if (leaf(node.child[nearest], node.count[nearest])) return true;
+        } else {
+            // In any order (or none entered): each child entered is pushed as it comes.
+            for (; lanes != 0; lanes &= lanes - 1) {
+                const int i = std::countr_zero(lanes);
+                stack[top++] = {node.child[i], node.count[i], t_enter[i]};
             }
         }
         // Pop until a wide node the ray enters before the best hit so far (t_max may have
