@@ -36,6 +36,7 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <span>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -290,7 +291,7 @@ class EmbreeQueries : public RayQueries {
         return r;
     }
 
-    static void fill_vertices(RTCGeometry geometry, const std::vector<Vec3>& vertices) {
+    static void fill_vertices(RTCGeometry geometry, std::span<const Vec3> vertices) {
         auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
                                                               RTC_FORMAT_FLOAT3, 3 * sizeof(float),
                                                               vertices.size()));
