@@ -193,7 +193,8 @@ TEST(many_sided_outlines_decide_as_the_count_over_every_edge) {
         }
         int differ = 0, inside = 0;
         for (int r = 0; r < 20000; ++r) {
-            Point2 p{random.uniform(lo_x - 0.1, hi_x + 0.1), random.uniform(lo_y - 0.1, hi_y + 0.1)};
+            Point2 p{random.uniform(lo_x - 0.1, hi_x + 0.1),
+                     random.uniform(lo_y - 0.1, hi_y + 0.1)};
             // At a vertex's height (the half-open rule), at the extremes, on a vertex.
             const Point2& q = outline[random.next() % outline.size()];
             if (r % 4 == 1) p.y = q.y;
@@ -313,5 +314,11 @@ TEST(read_errors_name_the_place) {
     // allocated for the count.
     CHECK_CONTAINS(scene_error(join(kTestViewer, "11 1000000  0 0 0  1 0 0  0 1 0")),
                    "unexpected end of file: expected polygon vertex 3");
+    // A vertex numbered with three digits, past the room made at once, in the message.
+    std::string many = "11 1000000";
+    for (int i = 0; i < 123; ++i)
+        many += "  " + std::to_string(i % 7) + " " + std::to_string(i % 5) + " 0";
+    CHECK_CONTAINS(scene_error(join(kTestViewer, many + " 1 x")),
+                   "expected polygon vertex 123 (a number), got 'x'");
     CHECK_EQ(scene_error(polygon_scene("3  0 0 0  1 0 0  0 1 0")), std::string());
 }

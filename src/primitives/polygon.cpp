@@ -2,6 +2,8 @@
 // decided by the even-odd rule: a point is inside when a ray from it in the polygon's plane
 // crosses the boundary an odd number of times. Self-intersecting outlines are accepted and
 // the same rule defines them (the middle of a pentagram drawn with five vertices is outside).
+#include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -149,13 +151,22 @@ void file_edges(Polygon& polygon) {
 
 ShapeData read(SceneReader& reader) {
     const long count = reader.whole("polygon vertex count", 3, kMaxVertices);
-    // Read one vertex at a time: the count alone never decides how much is allocated.
+    // Read one vertex at a time: the count alone never decides how much is allocated (room
+    // for a few is made at once, so that a small polygon's arrays are allocated once).
+    constexpr long kReservedVertices = 16;
     std::vector<Vec3> vertices;
     std::vector<Location> places;
+    vertices.reserve(static_cast<std::size_t>(std::min(count, kReservedVertices)));
+    places.reserve(vertices.capacity());
     Bounds box;
+    // The vertex's name for messages, written in place: "polygon vertex 12" is longer than
+    // a std::string holds without allocating, and a gear has thousands of vertices.
+    char what[32] = "polygon vertex ";
+    constexpr std::size_t kPrefix = sizeof "polygon vertex " - 1;
     for (long i = 0; i < count; ++i) {
         places.push_back(reader.next_location());
-        vertices.push_back(reader.vec3("polygon vertex " + std::to_string(i)));
+        const auto end = std::to_chars(what + kPrefix, what + sizeof what, i).ptr;
+        vertices.push_back(reader.vec3({what, static_cast<std::size_t>(end - what)}));
         box.expand(vertices.back());
     }
 
