@@ -212,6 +212,87 @@ TEST(many_spheres_keep_their_parameters_in_the_arena_after_the_reader) {
     CHECK_EQ(second.objects[19999].shape.bounds().max.x, 19999 + 0.25 + 19999 % 7);
 }
 
+TEST(surfaces_and_polygons_keep_their_data_in_the_arena_after_the_reader) {
+    // A surface of its own for every object (its colour its number), and polygons of 40
+    // vertices (outline and edge bands placed after each polygon) between spheres; the scene
+    // outlives its reader and the first copy of it.
+    std::string text = kViewer;
+    constexpr int kObjects = 3000;
+    for (int i = 0; i < kObjects; ++i) {
+        const std::string surface = " 100 " + std::to_string(i) + " 0.5 1  0 1 1 0 1\n";
+        if (i % 2 == 0) {
+            text += "1 0.5 " + std::to_string(3 * i) + " 0 0" + surface;
+            continue;
+        }
+        // A regular 40-gon of radius 1 about (3i, 5, 0) in the plane z = 0.
+        text += "11 40";
+        for (int k = 0; k < 40; ++k) {
+            const double a = 2 * M_PI * k / 40;
+            text += " " + std::to_string(3 * i + std::cos(a)) + " " +
+                    std::to_string(5 + std::sin(a)) + " 0";
+        }
+        text += surface;
+    }
+    std::optional<Scene> first = parse_scene(text);
+    const Scene scene = *first;
+    first.reset();
+    CHECK_EQ(scene.objects.size(), static_cast<std::size_t>(kObjects));
+    bool colours = true, hits = true, misses = true;
+    for (int i = 0; i < kObjects; ++i) {
+        const Object& object = scene.objects[static_cast<std::size_t>(i)];
+        const Material m = object.surface->at({});
+        colours = colours && m.colour[0] == i && m.colour[1] == 0.5 && m.colour[2] == 1;
+        if (i % 2 == 0) continue;
+        // Straight down through the centre at 7, and just outside the outline (0.999 of the
+        // way to a vertex lies inside, 1.001 outside).
+        Hit hit;
+        const double x = 3 * i;
+        hits = hits && object.shape.intersect({{x + 0.3, 5.2, 7}, {0, 0, -1}}, {1e-9, 100}, hit) &&
+               std::fabs(hit.t - 7) < 1e-12 &&
+               object.shape.intersect({{x + 0.999, 5, 1}, {0, 0, -1}}, {1e-9, 100}, hit);
+        misses = misses &&
+                 !object.shape.intersect({{x + 1.001, 5, 1}, {0, 0, -1}}, {1e-9, 100}, hit) &&
+                 !object.shape.intersect({{x, 6.01, 1}, {0, 0, -1}}, {1e-9, 100}, hit);
+    }
+    CHECK(colours);
+    CHECK(hits);
+    CHECK(misses);
+}
+
+TEST(the_arena_places_shapes_of_any_size_apart) {
+    // Sizes around the blocks' (16 KiB doubling to 4 MiB) and beyond the size that has a
+    // block of its own (1 MiB), between small ones: each writable to its last byte, none
+    // overlapping another.
+    ShapeArena arena;
+    std::vector<std::pair<std::uintptr_t, std::size_t>> placed;
+    const std::size_t sizes[] = {24,
+                                 16 << 10,
+                                 40,
+                                 (16 << 10) + 8,
+                                 100000,
+                                 8,
+                                 ShapeArena::kOwnBlockFrom,
+                                 64,
+                                 ShapeArena::kOwnBlockFrom + 1,
+                                 48,
+                                 3 << 20,
+                                 200,
+                                 700000,
+                                 16};
+    for (int round = 0; round < 3; ++round)
+        for (const std::size_t bytes : sizes) {
+            auto* p = static_cast<unsigned char*>(arena.place(bytes, 8));
+            p[0] = p[bytes - 1] = 1;
+            CHECK_EQ(reinterpret_cast<std::uintptr_t>(p) % 8, 0u);
+            placed.emplace_back(reinterpret_cast<std::uintptr_t>(p), bytes);
+        }
+    std::sort(placed.begin(), placed.end());
+    bool apart = true;
+    for (std::size_t i = 1; i < placed.size(); ++i)
+        apart = apart && placed[i - 1].first + placed[i - 1].second <= placed[i].first;
+    CHECK(apart);
+}
+
 TEST(the_arena_places_shapes_apart_and_aligned) {
     ShapeArena arena;
     std::vector<std::pair<std::uintptr_t, std::size_t>> placed;

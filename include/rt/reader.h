@@ -130,8 +130,21 @@ class SceneReader {
     ShapeData shape_data(T value) {
         return make_shape_data(shape_arena_, std::move(value));
     }
+    // Room of any size in the same arena, for parameters that need no destructor but have
+    // arrays of their own (a polygon's outline, placed after it): fill it, then hand it to
+    // placed_shape_data. One placement instead of an allocation per array, and no fresh heap
+    // pages per polygon.
+    void* shape_room(std::size_t bytes, std::size_t alignment) {
+        return arena()->place(bytes, alignment);
+    }
+    ShapeData placed_shape_data(const void* placed) const { return {shape_arena_, placed}; }
 
   private:
+    // The arena, made on first use.
+    const std::shared_ptr<ShapeArena>& arena() {
+        if (!shape_arena_) shape_arena_ = std::make_shared<ShapeArena>();
+        return shape_arena_;
+    }
     void add_input(const std::filesystem::path& resolved, const char* role);
 
     // Counts nesting depth while an affine or checker reads what it holds.

@@ -5,8 +5,12 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <new>
+#include <span>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -51,10 +55,11 @@ struct Point2 {
 struct EdgeBands {
     double origin = 0, top = 0;  // the outline's extent in v
     double scale = 0;
-    std::vector<std::uint32_t> first;  // per band, where its edges start in `edges`; and the end
-    std::vector<std::uint32_t> edges;  // edge i runs from outline[i] to the vertex before it
+    std::uint32_t count = 0;               // bands
+    const std::uint32_t* first = nullptr;  // per band, where its edges start in `edges`; the end
+    const std::uint32_t* edges = nullptr;  // edge i runs from outline[i] to the vertex before it
 
-    std::size_t bands() const { return first.empty() ? 0 : first.size() - 1; }
+    std::size_t bands() const { return count; }
     std::size_t band_of(double v) const {
         const double x = (v - origin) * scale;  // >= 0 for v >= origin
         const std::size_t last = bands() - 1;
@@ -62,13 +67,17 @@ struct EdgeBands {
     }
 };
 
+// Placed in the reader's arena with its arrays (the outline right after it, then the bands'),
+// so a polygon costs one placement rather than three allocations of fresh heap.
 struct Polygon {
     Plane plane;
     int u_axis, v_axis;  // the two world axes the polygon is projected onto
-    std::vector<Point2> outline;
+    std::uint32_t vertex_count;
+    const Point2* outline;  // vertex_count points
     EdgeBands bands;
     Bounds box;
 };
+static_assert(std::is_trivially_destructible_v<Polygon>);
 
 // The axis (0, 1, 2 for x, y, z) of the largest component.
 int largest_axis(const Vec3& v) {
@@ -88,7 +97,7 @@ bool crosses(const Point2& a, const Point2& b, Point2 p) {
 
 // The even-odd rule: whether an odd number of edges cross the ray from p along +u.
 bool even_odd_inside(const Polygon& polygon, Point2 p) {
-    const std::vector<Point2>& outline = polygon.outline;
+    const std::span<const Point2> outline(polygon.outline, polygon.vertex_count);
     const std::size_t n = outline.size();
     bool inside = false;
     const EdgeBands& bands = polygon.bands;
@@ -108,9 +117,10 @@ bool even_odd_inside(const Polygon& polygon, Point2 p) {
 }
 
 // Files the edges of a polygon with many vertices in bands: about one band per edge, fewer
-// where that would file an edge in more than kBandEntriesPerEdge bands on average.
-void file_edges(Polygon& polygon) {
-    const std::vector<Point2>& outline = polygon.outline;
+// where that would file an edge in more than kBandEntriesPerEdge bands on average. The bands'
+// arrays are placed in the reader's arena.
+void file_edges(Polygon& polygon, SceneReader& reader) {
+    const std::span<const Point2> outline(polygon.outline, polygon.vertex_count);
     const std::size_t n = outline.size();
     if (n < kBandedFrom) return;
     EdgeBands bands;
@@ -125,26 +135,31 @@ void file_edges(Polygon& polygon) {
         const double a = outline[i].v, b = outline[i == 0 ? n - 1 : i - 1].v;
         return std::pair{bands.band_of(std::fmin(a, b)), bands.band_of(std::fmax(a, b))};
     };
+    std::vector<std::uint32_t> first;
     for (std::size_t count = n; count >= 2; count /= 2) {
         bands.scale = static_cast<double>(count) / extent;
-        bands.first.assign(count + 1, 0);
+        bands.count = static_cast<std::uint32_t>(count);
+        first.assign(count + 1, 0);
         std::size_t entries = 0;
         for (std::size_t i = 0; i < n; ++i) {
             const auto [lo, hi] = span(i);
             entries += hi - lo + 1;
-            for (std::size_t b = lo; b <= hi; ++b) ++bands.first[b + 1];
+            for (std::size_t b = lo; b <= hi; ++b) ++first[b + 1];
             if (entries > kBandEntriesPerEdge * n) break;
         }
         if (!std::isfinite(bands.scale) || entries > kBandEntriesPerEdge * n) continue;
-        for (std::size_t b = 0; b < count; ++b) bands.first[b + 1] += bands.first[b];
-        bands.edges.resize(entries);
-        std::vector<std::uint32_t> next(bands.first.begin(), bands.first.end() - 1);
+        for (std::size_t b = 0; b < count; ++b) first[b + 1] += first[b];
+        auto* room = static_cast<std::uint32_t*>(reader.shape_room(
+            (first.size() + entries) * sizeof(std::uint32_t), alignof(std::uint32_t)));
+        std::uint32_t* edges = std::copy(first.begin(), first.end(), room);
+        std::vector<std::uint32_t> next(first.begin(), first.end() - 1);
         for (std::size_t i = 0; i < n; ++i) {
             const auto [lo, hi] = span(i);
-            for (std::size_t b = lo; b <= hi; ++b)
-                bands.edges[next[b]++] = static_cast<std::uint32_t>(i);
+            for (std::size_t b = lo; b <= hi; ++b) edges[next[b]++] = static_cast<std::uint32_t>(i);
         }
-        polygon.bands = std::move(bands);
+        bands.first = room;
+        bands.edges = edges;
+        polygon.bands = bands;
         return;
     }
 }
@@ -213,12 +228,17 @@ ShapeData read(SceneReader& reader) {
 
     // Project onto the two axes the plane faces least, where the outline is largest.
     const int drop = largest_axis({std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)});
-    Polygon polygon{{n, offset}, (drop + 1) % 3, (drop + 2) % 3, {}, {}, box};
-    polygon.outline.reserve(vertices.size());
-    for (const Vec3& v : vertices)
-        polygon.outline.push_back(project(v, polygon.u_axis, polygon.v_axis));
-    file_edges(polygon);
-    return std::make_shared<const Polygon>(std::move(polygon));
+    const int u_axis = (drop + 1) % 3, v_axis = (drop + 2) % 3;
+    static_assert(sizeof(Polygon) % alignof(Point2) == 0);
+    auto* room = static_cast<std::byte*>(
+        reader.shape_room(sizeof(Polygon) + vertices.size() * sizeof(Point2), alignof(Polygon)));
+    auto* outline = reinterpret_cast<Point2*>(room + sizeof(Polygon));
+    for (std::size_t i = 0; i < vertices.size(); ++i)
+        ::new (static_cast<void*>(outline + i)) Point2(project(vertices[i], u_axis, v_axis));
+    auto* polygon = ::new (static_cast<void*>(room)) Polygon{
+        {n, offset}, u_axis, v_axis, static_cast<std::uint32_t>(vertices.size()), outline, {}, box};
+    file_edges(*polygon, reader);
+    return reader.placed_shape_data(polygon);
 }
 
 bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
@@ -239,8 +259,8 @@ std::vector<Vec3> corners(const void* shape) {
     const auto& p = *static_cast<const Polygon*>(shape);
     const int drop = 3 - p.u_axis - p.v_axis;
     std::vector<Vec3> out;
-    out.reserve(p.outline.size());
-    for (const Point2& q : p.outline) {
+    out.reserve(p.vertex_count);
+    for (const Point2& q : std::span(p.outline, p.vertex_count)) {
         double v[3];
         v[p.u_axis] = q.u;
         v[p.v_axis] = q.v;

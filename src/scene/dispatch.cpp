@@ -85,7 +85,11 @@ SurfacePtr SceneReader::surface() {
         }
         fail(where, "expected a surface ID (one of " + ids + "), got " + describe_id(type_id));
     }
-    return std::make_shared<const Surface>(Surface{type, type->read(*this)});
+    // In the arena with its count, as the shapes are: a scene that sets a surface per object
+    // (the SPD's lattice) makes thousands.
+    SurfaceData data = type->read(*this);
+    return std::allocate_shared<const Surface>(ArenaAllocator<Surface>(arena()),
+                                               Surface{type, std::move(data)});
 }
 
 Light SceneReader::light(std::string_view what) {

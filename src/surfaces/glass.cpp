@@ -14,7 +14,7 @@ SurfaceData read(SceneReader& reader) {
     m.absorption = read_non_negative_spectrum(reader, "glass absorption");
     m.fresnel = true;
     reader.note_splitting_surface();  // F and 1 - F: both rays, short of total reflection
-    return std::make_shared<const Material>(m);
+    return reader.shape_data(m);      // in the reader's arena, as a shape's parameters
 }
 
 }  // namespace rt::glass_surface

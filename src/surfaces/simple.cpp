@@ -42,7 +42,7 @@ Material read_material(SceneReader& reader) {
 namespace rt::simple_surface {
 
 SurfaceData read(SceneReader& reader) {
-    return std::make_shared<const Material>(read_material(reader));
+    return reader.shape_data(read_material(reader));  // in the reader's arena
 }
 
 Material evaluate(const void* surface, const Vec3&) {
