@@ -446,6 +446,83 @@ TEST(quantize_rounds_as_lround_does_at_every_half_and_beside_it) {
     CHECK(same);
 }
 
+TEST(linear_samples_are_the_clamped_component_rounded_as_lround_does) {
+    // The linear path works four components at a time, the rest one by one: every kind of
+    // component (below 0, above 1, NaN, infinities, every sample's value and half-way point
+    // and their neighbours) at every place, against the definition.
+    std::vector<double> values = {-1,
+                                  -0.0,
+                                  0.0,
+                                  1,
+                                  2,
+                                  NAN,
+                                  -NAN,
+                                  INFINITY,
+                                  -INFINITY,
+                                  1e300,
+                                  -1e-300,
+                                  0x1p-1074,
+                                  std::nextafter(1.0, 2.0)};
+    for (const double max : {255.0, 65535.0})
+        for (int k = 0; k <= 255; ++k)
+            for (const double at : {k / 255.0 * (max / 255), (k + 0.5) / max * (max / 255)})
+                for (const double x : {at, std::nextafter(at, 0.0), std::nextafter(at, 2.0)})
+                    values.push_back(x * 255 / max);
+    std::uint64_t state = 7;
+    while (values.size() % 3 != 0 || values.size() < 5000) {
+        state = state * 6364136223846793005u + 1442695040888963407u;
+        values.push_back(static_cast<double>(state >> 11) * 0x1p-53 * 1.4 - 0.2);
+    }
+    const int width = static_cast<int>(values.size() / 3);
+    for (const int bits : {8, 16}) {
+        const double max = bits == 16 ? 65535 : 255;
+        const std::vector<std::uint8_t> got =
+            rt::quantize(raster_of(width, 1, values), bits, {}).bytes;
+        bool same = true;
+        for (std::size_t i = 0; i < values.size(); ++i) {
+            const double c = std::isnan(values[i]) ? 0 : std::clamp(values[i], 0.0, 1.0);
+            const auto want = static_cast<unsigned>(std::lround(max * c));
+            const unsigned have = bits == 16 ? unsigned{got[2 * i]} << 8 | got[2 * i + 1] : got[i];
+            same = same && have == want;
+        }
+        CHECK(same);
+    }
+}
+
+TEST(an_image_in_pieces_is_the_whole_file) {
+    // 1000 x 70 is 210,000 bytes of 8-bit samples: the header and four runs of rows; the
+    // pieces joined are the file encode_image gives, in every format.
+    std::vector<double> values;
+    for (int i = 0; i < 1000 * 70 * 3; ++i) values.push_back((i % 1013) / 1000.0);
+    const rt::Raster r = raster_of(1000, 70, values);
+    for (const rt::ImageFormat format :
+         {rt::ImageFormat::ppm, rt::ImageFormat::png, rt::ImageFormat::pfm})
+        for (const int bits : {8, 16}) {
+            rt::ImageEncoding e;
+            e.format = format;
+            e.bits = bits;
+            e.metadata.set("Software", "rt test");
+            std::string joined;
+            int pieces = 0;
+            rt::encode_image_in_pieces(r, e, [&](std::string_view piece) {
+                joined += piece;
+                ++pieces;
+            });
+            CHECK(joined == rt::encode_image(r, e));
+            CHECK_EQ(pieces, format == rt::ImageFormat::ppm ? (bits == 8 ? 4 : 7) : 1);
+        }
+}
+
+TEST(a_new_raster_is_black_small_or_large) {
+    // A large raster's pages come zeroed from the kernel and are not written first.
+    for (const int side : {3, 1024}) {
+        const rt::Raster r(side, side);
+        const auto v = r.values();
+        CHECK(
+            std::all_of(v.begin(), v.end(), [](double x) { return x == 0.0 && !std::signbit(x); }));
+    }
+}
+
 TEST(ppm_from_the_raster_is_the_header_and_quantize_samples) {
     // encode_image quantizes straight into the file's bytes; encode_ppm of quantize is the
     // same file, for both depths, with metadata and with a gamma.

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -89,6 +90,9 @@ struct SampleImage {
 SampleImage quantize(const Raster& raster, int bits, const Gamma& gamma);
 // The same samples written at `out`, which has room for them (3 or 6 bytes a pixel).
 void quantize_into(const Raster& raster, int bits, const Gamma& gamma, std::uint8_t* out);
+// Those of rows [y0, y1) only.
+void quantize_rows(const Raster& raster, int y0, int y1, int bits, const Gamma& gamma,
+                   std::uint8_t* out);
 // What quantize rounds with: std::lround's answer for 0 <= x < 2^32 (halves away from zero).
 unsigned round_to_nearest(double x);
 
@@ -103,6 +107,11 @@ struct ImageEncoding {
 // The whole file. With no metadata, 8 bits and linear gamma, a PPM is exactly what rt has
 // always written.
 std::string encode_image(const Raster& raster, const ImageEncoding& encoding);
+// The same bytes handed to `sink` in order, in pieces: a PPM's header and then runs of rows
+// of about 64 KiB each, so that a large image is never held whole a second time; a PNG or
+// PFM whole.
+void encode_image_in_pieces(const Raster& raster, const ImageEncoding& encoding,
+                            const std::function<void(std::string_view)>& sink);
 
 // Binary PPM: P6 for three channels, P5 for one; maxval 255 or 65535.
 std::string encode_ppm(const SampleImage& image, const ImageMetadata& metadata);

@@ -1,7 +1,8 @@
 // What the hierarchies' builds share for doing a loop on several threads without changing
 // its result: the loop's range cut into parts that depend only on its length and the thread
-// count, each written by one thread, and arrays whose elements are not zeroed first (so that
-// the threads that fill them are the first to touch their pages, at the same time).
+// count, each written by one thread, into arrays whose elements are not zeroed first
+// (UninitializedAllocator, rt/large_pages.h: the threads that fill them are the first to
+// touch their pages, at the same time).
 #pragma once
 
 #include <algorithm>
@@ -53,28 +54,5 @@ void parallel_parts(std::size_t count, int threads, std::size_t minimum_part, Bo
     for (const std::exception_ptr& failure : failures)
         if (failure) std::rethrow_exception(failure);
 }
-
-// An allocator that leaves elements default-initialised: for a trivial type, a vector's
-// resize() then neither writes them nor touches their pages. Large arrays get 2 MiB pages
-// where the kernel offers them (rt/large_pages.h).
-template <class T>
-struct UninitializedAllocator : LargeArrayAllocator<T> {
-    template <class U>
-    struct rebind {
-        using other = UninitializedAllocator<U>;
-    };
-    UninitializedAllocator() = default;
-    template <class U>
-    explicit UninitializedAllocator(const UninitializedAllocator<U>&) noexcept {}
-
-    template <class U>
-    void construct(U* p) noexcept {
-        ::new (static_cast<void*>(p)) U;
-    }
-    template <class U, class... Args>
-    void construct(U* p, Args&&... args) {
-        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-    }
-};
 
 }  // namespace rt

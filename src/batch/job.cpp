@@ -148,7 +148,9 @@ class ClaimedOutputs {
     // a lie.
     void write(const Raster& image, StageTimes& times) {
         const auto start = Clock::now();
-        image_.write_bytes(encode_image(image, encoding_));
+        encode_image_in_pieces(image, encoding_,
+                               [&](std::string_view piece) { image_.append(piece); });
+        image_.commit();
         times.write = seconds_since(start);
         if (depfile_) depfile_->write_bytes(rule_);
     }

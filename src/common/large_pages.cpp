@@ -59,6 +59,8 @@ void* allocate_array(std::size_t bytes, std::size_t alignment) {
     return reinterpret_cast<void*>(aligned);
 }
 
+bool arrays_come_zeroed(std::size_t bytes) noexcept { return bytes >= kLargeArrayBytes; }
+
 void free_array(void* memory, std::size_t bytes, std::size_t alignment) noexcept {
     if (memory == nullptr) return;
     if (bytes < kLargeArrayBytes) return free_small(memory, alignment);
@@ -70,6 +72,8 @@ void free_array(void* memory, std::size_t bytes, std::size_t alignment) noexcept
 void* allocate_array(std::size_t bytes, std::size_t alignment) {
     return allocate_small(bytes, alignment);
 }
+
+bool arrays_come_zeroed(std::size_t) noexcept { return false; }
 
 void free_array(void* memory, std::size_t, std::size_t alignment) noexcept {
     free_small(memory, alignment);
