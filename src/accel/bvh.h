@@ -315,7 +315,7 @@ class Bvh {
 // Nodes are visited depth first. At a wide node all children's boxes are tested at once; a lone
 // child entered is taken at once; of several, for Nearest the nearest is taken at once and
 // the others go on a small fixed stack with their entry distances, the farthest first (for
-// any, all go on the stack), and wait; a waiting child is dropped without another test once
+// any, in lane order, the last taken at once as the pop would take it), and wait; a waiting child is dropped without another test once
 // a hit nearer than its entry has been found. leaf(first, count) returns true to stop; walk
 // returns whether one did.
 template <Bvh::BoxTest Test, bool Nearest, class Leaf>
@@ -410,11 +410,21 @@ bool Bvh::walk_nodes(const Ray& ray, double t_min, const double& t_max, Leaf&& l
                 continue;
             }
             if (leaf(node.child[nearest], node.count[nearest])) return true;
-        } else {
-            // In any order (or none entered): each child entered is pushed as it comes.
-            for (; lanes != 0; lanes &= lanes - 1) {
+        } else if (lanes != 0) {
+            // In any order: the children entered are pushed in lane order but the last,
+            // which would be popped next, and that one is taken at once (t_max does not
+            // fall in this walk, so its check is the one the pop would make).
+            const int last = 31 - std::countl_zero(lanes);
+            for (lanes &= ~(1u << last); lanes != 0; lanes &= lanes - 1) {
                 const int i = std::countr_zero(lanes);
                 stack[top++] = {node.child[i], node.count[i], t_enter[i]};
+            }
+            if (t_enter[last] <= t_max) {
+                if (node.count[last] == 0) {
+                    current = node.child[last];
+                    continue;
+                }
+                if (leaf(node.child[last], node.count[last])) return true;
             }
         }
         // Pop until a wide node the ray enters before the best hit so far (t_max may have
