@@ -18,6 +18,25 @@ using namespace rt_test;
 
 namespace {
 const std::string kViewer = kTestViewer;
+
+using Placements = std::vector<std::pair<std::uintptr_t, std::size_t>>;
+
+// Places `bytes` in the arena, checks the alignment, writes its first and last byte, and
+// notes where it went.
+void place_and_touch(ShapeArena& arena, std::size_t bytes, std::size_t alignment,
+                     Placements& placed) {
+    auto* p = static_cast<unsigned char*>(arena.place(bytes, alignment));
+    p[0] = p[bytes - 1] = 1;  // writable to its last byte
+    CHECK_EQ(reinterpret_cast<std::uintptr_t>(p) % alignment, 0u);
+    placed.emplace_back(reinterpret_cast<std::uintptr_t>(p), bytes);
+}
+
+bool none_overlap(Placements placed) {
+    std::sort(placed.begin(), placed.end());
+    for (std::size_t i = 1; i < placed.size(); ++i)
+        if (placed[i - 1].first + placed[i - 1].second > placed[i].first) return false;
+    return true;
+}
 }  // namespace
 
 TEST(reads_the_original_example) {
@@ -264,7 +283,7 @@ TEST(the_arena_places_shapes_of_any_size_apart) {
     // block of its own (1 MiB), between small ones: each writable to its last byte, none
     // overlapping another.
     ShapeArena arena;
-    std::vector<std::pair<std::uintptr_t, std::size_t>> placed;
+    Placements placed;
     const std::size_t sizes[] = {24,
                                  16 << 10,
                                  40,
@@ -280,33 +299,17 @@ TEST(the_arena_places_shapes_of_any_size_apart) {
                                  700000,
                                  16};
     for (int round = 0; round < 3; ++round)
-        for (const std::size_t bytes : sizes) {
-            auto* p = static_cast<unsigned char*>(arena.place(bytes, 8));
-            p[0] = p[bytes - 1] = 1;
-            CHECK_EQ(reinterpret_cast<std::uintptr_t>(p) % 8, 0u);
-            placed.emplace_back(reinterpret_cast<std::uintptr_t>(p), bytes);
-        }
-    std::sort(placed.begin(), placed.end());
-    bool apart = true;
-    for (std::size_t i = 1; i < placed.size(); ++i)
-        apart = apart && placed[i - 1].first + placed[i - 1].second <= placed[i].first;
-    CHECK(apart);
+        for (const std::size_t bytes : sizes) place_and_touch(arena, bytes, 8, placed);
+    CHECK(none_overlap(placed));
 }
 
 TEST(the_arena_places_shapes_apart_and_aligned) {
     ShapeArena arena;
-    std::vector<std::pair<std::uintptr_t, std::size_t>> placed;
+    Placements placed;
     for (int i = 0; i < 100000; ++i) {
         const std::size_t bytes = 8 + static_cast<std::size_t>(i * 37 % 249);
         const std::size_t alignment = std::size_t{8} << (i % 4);  // 8 to 64
-        auto* p = static_cast<unsigned char*>(arena.place(bytes, alignment));
-        p[0] = p[bytes - 1] = static_cast<unsigned char>(i);  // writable to its last byte
-        CHECK_EQ(reinterpret_cast<std::uintptr_t>(p) % alignment, 0u);
-        placed.emplace_back(reinterpret_cast<std::uintptr_t>(p), bytes);
+        place_and_touch(arena, bytes, alignment, placed);
     }
-    std::sort(placed.begin(), placed.end());
-    bool apart = true;
-    for (std::size_t i = 1; i < placed.size(); ++i)
-        apart = apart && placed[i - 1].first + placed[i - 1].second <= placed[i].first;
-    CHECK(apart);
+    CHECK(none_overlap(placed));
 }
