@@ -135,14 +135,14 @@ class SceneReader {
     // placed_shape_data. One placement instead of an allocation per array, and no fresh heap
     // pages per polygon.
     void* shape_room(std::size_t bytes, std::size_t alignment) {
-        return arena()->place(bytes, alignment);
+        return arena_made(shape_arena_).place(bytes, alignment);
     }
     ShapeData placed_shape_data(const void* placed) const { return {shape_arena_, placed}; }
 
   private:
     // The arena, made on first use.
     const std::shared_ptr<ShapeArena>& arena() {
-        if (!shape_arena_) shape_arena_ = std::make_shared<ShapeArena>();
+        arena_made(shape_arena_);
         return shape_arena_;
     }
     void add_input(const std::filesystem::path& resolved, const char* role);

@@ -65,6 +65,12 @@ struct ArenaAllocator {
     }
 };
 
+// The arena `arena` points to, made on first use.
+inline ShapeArena& arena_made(std::shared_ptr<ShapeArena>& arena) {
+    if (!arena) arena = std::make_shared<ShapeArena>();
+    return *arena;
+}
+
 // A primitive's parameters as a shape holds them. One whose destructor does nothing (a
 // sphere's, a triangle's, a cylinder's) is placed in `arena`, created on first use, and the
 // shape shares the arena's ownership: the arena lives as long as any shape in it. Others (a
@@ -73,8 +79,8 @@ template <class T>
 ShapeData make_shape_data(std::shared_ptr<ShapeArena>& arena, T value) {
     if constexpr (std::is_trivially_destructible_v<T> && sizeof(T) <= ShapeArena::kLargestShape &&
                   alignof(T) <= 64) {
-        if (!arena) arena = std::make_shared<ShapeArena>();
-        const T* placed = ::new (arena->place(sizeof(T), alignof(T))) T(std::move(value));
+        const T* placed =
+            ::new (arena_made(arena).place(sizeof(T), alignof(T))) T(std::move(value));
         return ShapeData(arena, placed);
     } else {
         return std::make_shared<const T>(std::move(value));

@@ -315,9 +315,9 @@ class Bvh {
 // Nodes are visited depth first. At a wide node all children's boxes are tested at once; a lone
 // child entered is taken at once; of several, for Nearest the nearest is taken at once and
 // the others go on a small fixed stack with their entry distances, the farthest first (for
-// any, in lane order, the last taken at once as the pop would take it), and wait; a waiting child is dropped without another test once
-// a hit nearer than its entry has been found. leaf(first, count) returns true to stop; walk
-// returns whether one did.
+// any, in lane order, the last taken at once as the pop would take it), and wait; a waiting
+// child is dropped without another test once a hit nearer than its entry has been found.
+// leaf(first, count) returns true to stop; walk returns whether one did.
 template <Bvh::BoxTest Test, bool Nearest, class Leaf>
 bool Bvh::walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) const {
     if (wide_.empty()) return false;

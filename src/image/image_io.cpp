@@ -151,12 +151,14 @@ void store_sample(std::uint8_t* out, std::size_t i, std::uint32_t v) {
     }
 }
 
-// One component: clamped to [0, 1] (NaN to 0), scaled and rounded half away from zero.
-std::uint32_t linear_sample(double c, double max) {
-    if (!(c > 0)) c = 0;  // also NaN
-    if (c > 1) c = 1;
-    return round_to_nearest(max * c);
+// A component clamped to [0, 1], NaN to 0: what every gamma encodes.
+double clamped(double c) {
+    if (!(c > 0)) return 0;  // also NaN
+    return c > 1 ? 1 : c;
 }
+
+// One linear component, scaled and rounded half away from zero.
+std::uint32_t linear_sample(double c, double max) { return round_to_nearest(max * clamped(c)); }
 
 // Linear samples, the default, four components at a time in the compiler's vectors (which
 // its own vectoriser does not do here: the clamps stay branches). The same clamps and
@@ -201,10 +203,7 @@ void quantize_rows(const Raster& raster, int y0, int y1, int bits, const Gamma& 
         for (int x = 0; x < raster.width(); ++x) {
             const Spectrum s = raster.at(x, y);
             for (std::size_t i = 0; i < 3; ++i) {
-                double c = s[i];
-                if (!(c > 0)) c = 0;  // also NaN
-                if (c > 1) c = 1;
-                const unsigned v = round_to_nearest(max * encode_gamma(c, gamma));
+                const unsigned v = round_to_nearest(max * encode_gamma(clamped(s[i]), gamma));
                 if (bits == 16) *out++ = static_cast<std::uint8_t>(v >> 8);
                 *out++ = static_cast<std::uint8_t>(v);
             }
@@ -215,13 +214,7 @@ std::string encode_image(const Raster& raster, const ImageEncoding& encoding) {
     switch (encoding.format) {
         case ImageFormat::ppm: {
             std::string out;
-            encode_image_in_pieces(raster, encoding, [&](std::string_view piece) {
-                if (out.empty())  // the header: room for the rest at once
-                    out.reserve(piece.size() + static_cast<std::size_t>(raster.width()) *
-                                                   static_cast<std::size_t>(raster.height()) * 3 *
-                                                   static_cast<std::size_t>(encoding.bits / 8));
-                out += piece;
-            });
+            encode_image_in_pieces(raster, encoding, [&](std::string_view piece) { out += piece; });
             return out;
         }
         case ImageFormat::png:
