@@ -2,6 +2,8 @@
 // refraction, the recursion limits and the render modes.
 #include <cmath>
 #include <numbers>
+#include <tuple>
+#include <utility>
 
 #include "rt/optics.h"
 #include "rt/render.h"
@@ -77,6 +79,46 @@ TEST(shadow_blocks_light_but_not_ambient) {
     options.shadows = false;
     CHECK_NEAR(Tracer(s, options).trace(ray), Spectrum(0.4 + 1.3, 0.2 + 0.9, 0.1 + 0.7) + mirror,
                1e-12);
+}
+
+// A light whose term at a point is exactly zero (no diffuse colour it can light, no
+// highlight, or one too sharp to show) needs no shadow ray there; one that adds anything,
+// its highlight included, still asks.
+TEST(a_light_that_adds_nothing_casts_no_shadow_ray) {
+    RenderOptions options;
+    options.reflection = false;
+    const auto shade = [&](const std::string& sphere, const std::string& lights) {
+        const Scene scene = parse_scene(kViewer2x2 + sphere + lights);
+        Tracer tracer(scene, options);
+        const Spectrum v = tracer.pixel(1, 1);
+        return std::pair{v, tracer.stats().shadow_rays};
+    };
+    const std::string white_light = "104 0 0 10  2 2 2\n";
+    // No diffuse term and no highlight: black, and no shadow ray.
+    auto [v, shadow] = shade("1 1 0 0 0  100 1 1 1 0 10 0 0 1\n", white_light);
+    CHECK_NEAR(v, Spectrum(0.0), 0);
+    CHECK_EQ(shadow, 0u);
+    // A highlight only, straight on: 2 x ks, and the shadow ray is cast.
+    std::tie(v, shadow) = shade("1 1 0 0 0  100 1 1 1 0.5 10 0 0 1\n", white_light);
+    CHECK_NEAR(v, Spectrum(1.0), 1e-12);
+    CHECK_EQ(shadow, 1u);
+    // The same highlight at 45 degrees with exponent 1e5: (1/sqrt 2)^1e5 is 0 in a double.
+    std::tie(v, shadow) = shade("1 1 0 0 0  100 1 1 1 0.5 1e5 0 0 1\n", "104 0 4 5  2 2 2\n");
+    CHECK_NEAR(v, Spectrum(0.0), 0);
+    CHECK_EQ(shadow, 0u);
+    // A red light on a cyan diffuse surface: nothing to light without a highlight...
+    const std::string red_light = "104 0 0 10  2 0 0\n";
+    std::tie(v, shadow) = shade("1 1 0 0 0  100 0 1 1 0 10 0.8 0 1\n", red_light);
+    CHECK_NEAR(v, Spectrum(0.0), 0);
+    CHECK_EQ(shadow, 0u);
+    // ...and with one, the highlight's red (2 x 0.5), after the shadow ray.
+    std::tie(v, shadow) = shade("1 1 0 0 0  100 0 1 1 0.5 10 0.8 0 1\n", red_light);
+    CHECK_NEAR(v, Spectrum(1.0, 0, 0), 1e-12);
+    CHECK_EQ(shadow, 1u);
+    // A diffuse term alone lights the point and asks once; the light behind asks nothing.
+    std::tie(v, shadow) = shade(kSphere, "104 0 0 -10  1 1 1\n104 0 0 10  1 1 1\n");
+    CHECK_NEAR(v, Spectrum(0.8 + 0.5, 0.4 + 0.5, 0.2 + 0.5), 1e-12);
+    CHECK_EQ(shadow, 1u);
 }
 
 TEST(switches_remove_their_terms) {
