@@ -81,9 +81,9 @@ TEST(shadow_blocks_light_but_not_ambient) {
                1e-12);
 }
 
-// A light whose term at a point is exactly zero (no diffuse colour it can light, no
+// A light whose term at a point of a surface without a diffuse term is exactly zero (no
 // highlight, or one too sharp to show) needs no shadow ray there; one that adds anything,
-// its highlight included, still asks.
+// and any light on a diffuse surface, still asks.
 TEST(a_light_that_adds_nothing_casts_no_shadow_ray) {
     RenderOptions options;
     options.reflection = false;
@@ -106,15 +106,28 @@ TEST(a_light_that_adds_nothing_casts_no_shadow_ray) {
     std::tie(v, shadow) = shade("1 1 0 0 0  100 1 1 1 0.5 1e5 0 0 1\n", "104 0 4 5  2 2 2\n");
     CHECK_NEAR(v, Spectrum(0.0), 0);
     CHECK_EQ(shadow, 0u);
-    // A red light on a cyan diffuse surface: nothing to light without a highlight...
+    // A diffuse surface always asks: a red light on a cyan one adds nothing without a
+    // highlight, but only a surface without a diffuse term is spared the shadow ray...
     const std::string red_light = "104 0 0 10  2 0 0\n";
     std::tie(v, shadow) = shade("1 1 0 0 0  100 0 1 1 0 10 0.8 0 1\n", red_light);
     CHECK_NEAR(v, Spectrum(0.0), 0);
-    CHECK_EQ(shadow, 0u);
-    // ...and with one, the highlight's red (2 x 0.5), after the shadow ray.
+    CHECK_EQ(shadow, 1u);
+    // ...and with a highlight the red shows (2 x 0.5).
     std::tie(v, shadow) = shade("1 1 0 0 0  100 0 1 1 0.5 10 0.8 0 1\n", red_light);
     CHECK_NEAR(v, Spectrum(1.0, 0, 0), 1e-12);
     CHECK_EQ(shadow, 1u);
+    // A black surface with a highlight of exponent 1e5 straight on: 2 x ks, after the ray.
+    std::tie(v, shadow) = shade("1 1 0 0 0  100 0 0 0 0.5 1e5 0.8 0 1\n", white_light);
+    CHECK_NEAR(v, Spectrum(1.0), 1e-12);
+    CHECK_EQ(shadow, 1u);
+    // A highlight behind a blocker: the ray is cast, and the light adds nothing.
+    {
+        const Scene scene = parse_scene(kViewer2x2 + "1 1 0 0 0  100 1 1 1 0.5 10 0 0 1\n" +
+                                        white_light + "1 0.1  0 0 6  100 1 1 1 0 1 1 0 1\n");
+        Tracer tracer(scene, options);
+        CHECK_NEAR(tracer.trace({{0, 0, 3}, {0, 0, -1}}), Spectrum(0.0), 0);
+        CHECK_EQ(tracer.stats().shadow_rays, 1u);
+    }
     // A diffuse term alone lights the point and asks once; the light behind asks nothing.
     std::tie(v, shadow) = shade(kSphere, "104 0 0 -10  1 1 1\n104 0 0 10  1 1 1\n");
     CHECK_NEAR(v, Spectrum(0.8 + 0.5, 0.4 + 0.5, 0.2 + 0.5), 1e-12);

@@ -84,7 +84,9 @@ class alignas(64) Tracer {
     // tracing the ray again (the sum is the same, bit for bit).
     Spectrum pixel(int x, int y, const Spectrum* traced_centre = nullptr);
     // The value of the original's one ray through pixel (x, y), whatever options.samples is.
-    Spectrum one_ray(int x, int y) { return shade_primary(scene_.viewer.primary_ray(x, y)); }
+    Spectrum one_ray(int x, int y) {
+        return shade_primary(scene_.viewer.primary_ray(x, y, plane_centre_));
+    }
 
     std::optional<SceneHit> closest_hit(const Ray& ray);
     // True when any object lies along the ray closer than `distance`.
@@ -98,6 +100,10 @@ class alignas(64) Tracer {
     // same side (the same vector but for a smooth mesh).
     Spectrum direct_light(const Vec3& point, const Vec3& facing_normal, const Vec3& shading,
                           const Vec3& reflected, const Material& m, double ks);
+    // direct_light for a surface with a diffuse term (Diffuse) or without one.
+    template <bool Diffuse>
+    Spectrum lights_at(const Vec3& point, const Vec3& facing_normal, const Vec3& shading,
+                       const Vec3& reflected, const Material& m, double ks);
     bool may_trace(int depth, double weight) const {
         return depth <= options_.max_depth && weight >= options_.min_weight;
     }
@@ -106,7 +112,8 @@ class alignas(64) Tracer {
     const ObjectIndex* index_;  // the scene's hierarchy, when options_.accelerate
     RenderOptions options_;     // a copy: small, and safe when built from a temporary
     RenderStats stats_;
-    Spectrum escaped_;  // what a traced ray that hits nothing brings back
+    Spectrum escaped_;   // what a traced ray that hits nothing brings back
+    Vec3 plane_centre_;  // the viewer's, which every primary ray shares
     // Per light, the object that last blocked a shadow ray toward it: lights() of them,
     // from kBlockerPadding on.
     static constexpr std::size_t kBlockerPadding = 64 / sizeof(LastBlocker);

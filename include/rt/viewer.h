@@ -18,12 +18,16 @@ struct Viewer {
 
     // The ray through raster position (px, py): px in [0, xres], py in [0, yres], y down.
     // Integer positions are the pixel corners, exactly as the original prints the formula.
-    Ray primary_ray(double px, double py) const {
-        const Vec3 centre = eye + normalized(look_at - eye);
+    Ray primary_ray(double px, double py) const { return primary_ray(px, py, plane_centre()); }
+    // The same with the image plane's centre given (plane_centre(), which every ray shares:
+    // the tracer computes it once instead of a square root and a division per ray).
+    Ray primary_ray(double px, double py, const Vec3& centre) const {
         const double alpha = (2 * px - xres) / xres;
         const double beta = -(2 * py - yres) / yres;
         return {eye, normalized(centre + alpha * x + beta * y - eye)};
     }
+    // The image plane's centre: one unit from the eye towards the point looked at.
+    Vec3 plane_centre() const { return eye + normalized(look_at - eye); }
 };
 
 // Pixels are square when xres : yres is |x| : |y|. When they are not (to within rounding a

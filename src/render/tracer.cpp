@@ -74,6 +74,7 @@ Tracer::Tracer(const Scene& scene, const RenderOptions& options)
       index_(scene.index.get()),
       options_(options),
       escaped_(scene.background.value_or(scene.ambient)),
+      plane_centre_(scene.viewer.plane_centre()),
       last_blockers_(kBlockerPadding + scene.lights.size() + kBlockerPadding) {
     // A backend replaces the hierarchy: it is asked on the path of the linear scan, so that
     // rt's own path (the hierarchy's) does not test for it on every ray.
@@ -122,6 +123,20 @@ bool Tracer::blocked(const Ray& ray, double distance, LastBlocker* last) {
 
 Spectrum Tracer::direct_light(const Vec3& point, const Vec3& facing_normal, const Vec3& shading,
                               const Vec3& reflected, const Material& m, double ks) {
+    // Without a diffuse term (kd or the colour zero, or diffuse light off) only a highlight
+    // can light the point, and where it is exactly zero the light adds nothing, blocked or
+    // not: then no shadow ray is needed. A mirror's highlight is zero wherever the light
+    // lies more than 90 degrees from the mirror direction, and one of exponent 1e5 (the
+    // SPD's mirrors') wherever r.s is below 0.993. With a diffuse term the shadow ray comes
+    // first, as always, so that a blocked one costs neither term.
+    return options_.diffuse && m.kd != 0 && !m.colour.is_black()
+               ? lights_at<true>(point, facing_normal, shading, reflected, m, ks)
+               : lights_at<false>(point, facing_normal, shading, reflected, m, ks);
+}
+
+template <bool Diffuse>
+Spectrum Tracer::lights_at(const Vec3& point, const Vec3& facing_normal, const Vec3& shading,
+                           const Vec3& reflected, const Material& m, double ks) {
     Spectrum total(0.0);
     for (std::size_t l = 0; l < scene_.lights.size(); ++l) {
         const Light& light = scene_.lights[l];
@@ -135,28 +150,19 @@ Spectrum Tracer::direct_light(const Vec3& point, const Vec3& facing_normal, cons
             // vector, as for every primitive but the smooth mesh, the two tests are one.)
             const double lambert = dot(shading, s.direction);
             if (!(facing > 0) || !(lambert > 0) || s.intensity.is_black()) continue;
+            const Ray shadow_ray{point, s.direction};
+            if (Diffuse && options_.shadows && blocked(shadow_ray, s.distance, &last_blocker(l)))
+                continue;
             Spectrum term(0.0);
             if (options_.diffuse) term += m.colour * (m.kd * lambert);
             const double highlight = dot(reflected, s.direction);
-            const bool has_highlight = options_.specular && ks > 0 && highlight > 0;
-            const auto shadowed = [&] {
-                return options_.shadows &&
-                       blocked({point, s.direction}, s.distance, &last_blocker(l));
-            };
-            if (has_highlight && !term.is_black()) {
-                // Lit unless blocked: the shadow ray first, so a blocked one costs no pow.
-                if (shadowed()) continue;
+            if (options_.specular && ks > 0 && highlight > 0)
                 term += Spectrum(ks * std::pow(highlight, m.ke));
-                total += s.intensity * term;
+            if (!Diffuse &&
+                ((s.intensity * term).is_black() ||
+                 (options_.shadows && blocked(shadow_ray, s.distance, &last_blocker(l)))))
                 continue;
-            }
-            // The term is whole (no highlight, or only one): where it adds exactly nothing,
-            // no shadow ray is needed. A mirror's highlight of exponent 1e5 (the SPD's) is
-            // zero in a double wherever the highlight is below 0.993.
-            if (has_highlight) term += Spectrum(ks * std::pow(highlight, m.ke));
-            const Spectrum lit = s.intensity * term;
-            if (lit.is_black() || shadowed()) continue;
-            total += lit;
+            total += s.intensity * term;
         }
     }
     return total;
@@ -255,7 +261,7 @@ Spectrum Tracer::pixel(int x, int y, const Spectrum* traced_centre) {
                 continue;
             }
             const double u = (i + 0.5) / n - 0.5;
-            sum += shade_primary(scene_.viewer.primary_ray(x + u, y + v));
+            sum += shade_primary(scene_.viewer.primary_ray(x + u, y + v, plane_centre_));
         }
     }
     return sum * (1.0 / (n * n));
