@@ -323,6 +323,27 @@ TEST(camera_rays_follow_the_pixel_corner_formula) {
     CHECK_NEAR(r.direction, normalized(centre + alpha * v.x + beta * v.y - v.eye), 1e-15);
 }
 
+// The render makes a row's rays before tracing them (Tracer::row_rays); every pixel must
+// still be exactly the tracer's pixel(), as for a region and with supersampling.
+TEST(render_is_the_tracers_pixel_for_every_pixel) {
+    const Scene s = parse_scene("102 0.3 -0.2 5 0 0 0 1.3 0.1 0 0 0.9 0.2 37 23\n" + kSphere +
+                                "1 0.4  1 1 1.5  100 0.2 0.9 0.3 0.6 20 0.5 0 1\n"
+                                "101 2 3 4 20 20 20\n103 .1 .1 .1\n");
+    for (int samples : {1, 2}) {
+        RenderOptions options;
+        options.threads = 2;
+        options.samples = samples;
+        const Raster image = render(s, options);
+        Tracer tracer(s, options);
+        bool same = true;
+        for (int y = 0; y < image.height(); ++y)
+            for (int x = 0; x < image.width(); ++x)
+                same = same && image.at(x, y) == tracer.pixel(x, y);
+        CHECK(same);
+        CHECK(tracer.primary_ray(5, 7).direction == s.viewer.primary_ray(5, 7).direction);
+    }
+}
+
 TEST(render_is_the_same_on_any_number_of_threads) {
     const Scene s = parse_scene("102 0 0 5 0 0 0 1 0 0 0 1 0 37 23\n" + kSphere +
                                 "101 2 3 4 20 20 20\n103 .1 .1 .1\n");

@@ -84,8 +84,14 @@ class alignas(64) Tracer {
     // tracing the ray again (the sum is the same, bit for bit).
     Spectrum pixel(int x, int y, const Spectrum* traced_centre = nullptr);
     // The value of the original's one ray through pixel (x, y), whatever options.samples is.
-    Spectrum one_ray(int x, int y) {
-        return shade_primary(scene_.viewer.primary_ray(x, y, plane_centre_));
+    Spectrum one_ray(int x, int y) { return shade_primary(primary_ray(x, y)); }
+    // The original's one ray through pixel (x, y), and those of columns x0 to x1 - 1 of row
+    // y into `rays`, made one after another before any is traced: their square roots and
+    // divisions then overlap, where each would otherwise wait ahead of its trace.
+    Ray primary_ray(int x, int y) const { return scene_.viewer.primary_ray(x, y, plane_centre_); }
+    void row_rays(int y, int x0, int x1, std::vector<Ray>& rays) const {
+        rays.resize(static_cast<std::size_t>(x1 - x0));
+        for (int x = x0; x < x1; ++x) rays[static_cast<std::size_t>(x - x0)] = primary_ray(x, y);
     }
 
     std::optional<SceneHit> closest_hit(const Ray& ray);

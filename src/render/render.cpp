@@ -193,8 +193,17 @@ Raster render_region(const Scene& scene, const RenderOptions& options, const Pix
             tracers, region,
             [&](Tracer& tracer, int y) {
                 thread_local std::vector<double> scratch;
-                row_through_store(rows, 1, y, region.x0, region.x1, raster, scratch,
-                                  [&](int x) { return tracer.pixel(x, y); });
+                if (options.samples > 1) {
+                    row_through_store(rows, 1, y, region.x0, region.x1, raster, scratch,
+                                      [&](int x) { return tracer.pixel(x, y); });
+                    return;
+                }
+                // One ray a pixel (what pixel() traces then): the row's rays made first.
+                thread_local std::vector<Ray> rays;
+                tracer.row_rays(y, region.x0, region.x1, rays);
+                row_through_store(rows, 1, y, region.x0, region.x1, raster, scratch, [&](int x) {
+                    return tracer.shade_primary(rays[static_cast<std::size_t>(x - region.x0)]);
+                });
             },
             progress);
     }
