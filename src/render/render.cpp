@@ -130,8 +130,11 @@ void render_adaptive(std::vector<Tracer>& tracers, const PixelRect& rect, const 
         tracers, known,
         [&](Tracer& tracer, int y) {
             thread_local std::vector<double> scratch;
-            row_through_store(store, 0, y, known.x0, known.x1, raster, scratch,
-                              [&](int x) { return tracer.one_ray(x, y); });
+            thread_local std::vector<Ray> rays;  // the row's one rays, made first (row_rays)
+            tracer.row_rays(y, known.x0, known.x1, rays);
+            row_through_store(store, 0, y, known.x0, known.x1, raster, scratch, [&](int x) {
+                return tracer.shade_primary(rays[static_cast<std::size_t>(x - known.x0)]);
+            });
         },
         progress);
     // Decided for the whole rectangle before any pixel is overwritten by its grid's mean. Bytes,
