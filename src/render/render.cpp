@@ -94,6 +94,18 @@ void row_through_store(RowStore* store, int pass, int y, int x0, int x1, Window&
     store->finished(pass, y, x0, x1, scratch.data());
 }
 
+// Row y's one ray per pixel from x0 to x1 - 1, through the store as row_through_store: the
+// row's rays are made before any is traced (Tracer::row_rays), so that their square roots
+// and divisions overlap.
+void one_ray_row(Tracer& tracer, RowStore* store, int pass, int y, int x0, int x1, Window& raster) {
+    thread_local std::vector<double> scratch;
+    thread_local std::vector<Ray> rays;
+    tracer.row_rays(y, x0, x1, rays);
+    row_through_store(store, pass, y, x0, x1, raster, scratch, [&](int x) {
+        return tracer.shade_primary(rays[static_cast<std::size_t>(x - x0)]);
+    });
+}
+
 // Whether one-ray values a and b differ by more than `threshold` in some component, compared
 // as the image will be written: clamped to [0, 1].
 bool differ(const Spectrum& a, const Spectrum& b, double threshold) {
@@ -129,12 +141,7 @@ void render_adaptive(std::vector<Tracer>& tracers, const PixelRect& rect, const 
     for_each_row(
         tracers, known,
         [&](Tracer& tracer, int y) {
-            thread_local std::vector<double> scratch;
-            thread_local std::vector<Ray> rays;  // the row's one rays, made first (row_rays)
-            tracer.row_rays(y, known.x0, known.x1, rays);
-            row_through_store(store, 0, y, known.x0, known.x1, raster, scratch, [&](int x) {
-                return tracer.shade_primary(rays[static_cast<std::size_t>(x - known.x0)]);
-            });
+            one_ray_row(tracer, store, 0, y, known.x0, known.x1, raster);
         },
         progress);
     // Decided for the whole rectangle before any pixel is overwritten by its grid's mean. Bytes,
@@ -195,18 +202,14 @@ Raster render_region(const Scene& scene, const RenderOptions& options, const Pix
         for_each_row(
             tracers, region,
             [&](Tracer& tracer, int y) {
-                thread_local std::vector<double> scratch;
-                if (options.samples > 1) {
-                    row_through_store(rows, 1, y, region.x0, region.x1, raster, scratch,
-                                      [&](int x) { return tracer.pixel(x, y); });
+                // One ray a pixel is what pixel() traces then.
+                if (options.samples <= 1) {
+                    one_ray_row(tracer, rows, 1, y, region.x0, region.x1, raster);
                     return;
                 }
-                // One ray a pixel (what pixel() traces then): the row's rays made first.
-                thread_local std::vector<Ray> rays;
-                tracer.row_rays(y, region.x0, region.x1, rays);
-                row_through_store(rows, 1, y, region.x0, region.x1, raster, scratch, [&](int x) {
-                    return tracer.shade_primary(rays[static_cast<std::size_t>(x - region.x0)]);
-                });
+                thread_local std::vector<double> scratch;
+                row_through_store(rows, 1, y, region.x0, region.x1, raster, scratch,
+                                  [&](int x) { return tracer.pixel(x, y); });
             },
             progress);
     }
