@@ -139,6 +139,33 @@ struct LaneVectors<8> {
     using Ints = std::int32_t __attribute__((vector_size(32)));
 };
 
+// Each lane's sign bit as bit i of a number. A node's walk waits for this mask before it can
+// branch, and gathered lane by lane (an extract and an OR each) it was a chain of some
+// fifteen instructions; on x86-64 it is one, movmskps (SSE, in every x86-64 build; its
+// eight-lane form needs AVX, so only the AVX2 walk asks for it, with Avx2). Renders took
+// 0.90-0.99 of the time (docs/performance.md, "The lanes' mask in one instruction").
+// Elsewhere (arm64) the lanes are gathered one by one, to the same bits.
+#if RT_AVX2_PATH
+[[gnu::target("avx2")]] inline unsigned sign_bits_avx2(const LaneVectors<8>::Ints& lanes) {
+    return static_cast<unsigned>(
+        __builtin_ia32_movmskps256(reinterpret_cast<LaneVectors<8>::Floats>(lanes)));
+}
+#endif
+template <int Lanes, bool Avx2>
+[[gnu::always_inline]] inline unsigned sign_bits(const typename LaneVectors<Lanes>::Ints& lanes) {
+#if RT_AVX2_PATH
+    if constexpr (Lanes == 8 && Avx2) {
+        return sign_bits_avx2(lanes);
+    } else if constexpr (Lanes == 4) {
+        return static_cast<unsigned>(
+            __builtin_ia32_movmskps(reinterpret_cast<LaneVectors<4>::Floats>(lanes)));
+    }
+#endif
+    unsigned bits = 0;
+    for (int i = 0; i < Lanes; ++i) bits |= (static_cast<unsigned>(lanes[i]) >> 31) << i;
+    return bits;
+}
+
 // A ray prepared for testing the boxes of a wide node in float. Float arithmetic only
 // culls, so every rounding is taken against culling: the origin is bracketed by the floats
 // just below and above it, each slab distance is computed from the bracket end that makes
@@ -155,9 +182,10 @@ class WideRay {
     // The lanes (bit i for child i) whose boxes the ray may enter within [t_min, t_max],
     // and, per lane, a distance at or before which it enters. Lanes is how many are tested
     // at once: 1 (scalar code), 4 (a vector of four floats, SSE or NEON) or 8 (one of eight,
-    // AVX); each does the same operations on every lane and keeps the same lanes.
+    // AVX); each does the same operations on every lane and keeps the same lanes. Avx2
+    // only where the caller is compiled for AVX2 (see sign_bits).
     // Inlined into traversal always: there the ray's numbers stay in registers.
-    template <int Lanes>
+    template <int Lanes, bool Avx2 = false>
     [[gnu::always_inline]] inline unsigned enters(const WideNode& node, double t_max,
                                                   float t_enter[WideNode::kWidth]) const;
 
@@ -292,8 +320,8 @@ class Bvh {
     // (mirror-49, 49 spheres in one node of eight leaves: 1.06 of the time in double).
     static constexpr int kDoubleTestedRoot = 4;
     // The walk below the root's special case, with the box test Test (not simd). Inlined
-    // into walk, and into walk_avx2 where it is compiled for AVX2.
-    template <BoxTest Test, bool Nearest, class Leaf>
+    // into walk, and into walk_avx2 where it is compiled for AVX2 (and told so by Avx2).
+    template <BoxTest Test, bool Nearest, bool Avx2 = false, class Leaf>
     [[gnu::always_inline]] inline bool walk_nodes(const Ray& ray, double t_min, const double& t_max,
                                                   Leaf&& leaf) const;
 #if RT_AVX2_PATH
@@ -302,7 +330,7 @@ class Bvh {
     template <bool Nearest, class Leaf>
     [[gnu::target("avx2")]] bool walk_avx2(const Ray& ray, double t_min, const double& t_max,
                                            Leaf&& leaf) const {
-        return walk_nodes<BoxTest::eight, Nearest>(ray, t_min, t_max, leaf);
+        return walk_nodes<BoxTest::eight, Nearest, true>(ray, t_min, t_max, leaf);
     }
 #endif
 
@@ -346,7 +374,7 @@ bool Bvh::walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) c
     return walk_nodes<kTest, Nearest>(ray, t_min, t_max, leaf);
 }
 
-template <Bvh::BoxTest Test, bool Nearest, class Leaf>
+template <Bvh::BoxTest Test, bool Nearest, bool Avx2, class Leaf>
 bool Bvh::walk_nodes(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) const {
     bool exact = Test == BoxTest::exact;
     std::optional<WideRay> wide_ray;
@@ -379,7 +407,7 @@ bool Bvh::walk_nodes(const Ray& ray, double t_min, const double& t_max, Leaf&& l
             }
         } else {
             constexpr int kLanes = Test == BoxTest::eight ? 8 : Test == BoxTest::four ? 4 : 1;
-            lanes = wide_ray->enters<kLanes>(node, t_max, t_enter);
+            lanes = wide_ray->enters<kLanes, Avx2>(node, t_max, t_enter);
         }
         if (lanes != 0 && (lanes & (lanes - 1)) == 0) {
             // One child entered (the common case deep in the tree): straight into it.
@@ -497,7 +525,7 @@ inline WideRay::WideRay(const Ray& ray, double t_min) {
 // t_min and the three, the exit the smallest of t_max and the three. A NaN (0 * inf: a ray
 // parallel to a slab with its origin on the slab's plane) loses every comparison, so that
 // slab is ignored, which only keeps more. Unused lanes are masked off.
-template <int Lanes>
+template <int Lanes, bool Avx2>
 inline unsigned WideRay::enters(const WideNode& node, double t_max,
                                 float t_enter[WideNode::kWidth]) const {
     static_assert(Lanes == 1 || Lanes == 4 || Lanes == 8);
@@ -508,9 +536,6 @@ inline unsigned WideRay::enters(const WideNode& node, double t_max,
         // Four lanes are one SSE or NEON register on every machine rt is built for; eight
         // are one AVX register, and elsewhere are split into halves by the compiler.
         using Floats = typename LaneVectors<Lanes>::Floats;
-        using Ints = typename LaneVectors<Lanes>::Ints;
-        Ints bits;
-        for (int i = 0; i < Lanes; ++i) bits[i] = 1 << i;
         unsigned lanes = 0;
         for (int first = 0; first < WideNode::kWidth; first += Lanes) {
             Floats near = Floats{} + t_min_, far = Floats{} + t_max_f;
@@ -525,12 +550,9 @@ inline unsigned WideRay::enters(const WideNode& node, double t_max,
             }
             near = near * (near >= 0 ? Floats{} + shrink : Floats{} + grow);
             far = far * (far >= 0 ? Floats{} + grow : Floats{} + shrink) + kFloatFloor;
-            // Each lane's bit where it is in (the comparison gives all ones there), gathered.
-            const Ints in = (near <= far) & bits;
+            // The comparison gives all ones (a set sign bit) where a lane is in.
             std::memcpy(t_enter + first, &near, sizeof near);
-            unsigned gathered = 0;
-            for (int i = 0; i < Lanes; ++i) gathered |= static_cast<unsigned>(in[i]);
-            lanes |= gathered << first;
+            lanes |= sign_bits<Lanes, Avx2>(near <= far) << first;
         }
         return lanes & ((1u << node.size) - 1);
     } else {
