@@ -799,6 +799,57 @@ TEST(a_mesh_that_blocked_last_is_asked_again_only_behind_its_box) {
     CHECK(yes > 500 && no > 500);
 }
 
+// A mesh of `triangles` random triangles within [-2, 2]^3 (ID 14), or with a random unit
+// normal at each vertex (ID 16), and a surface.
+std::string random_mesh(Random& random, int triangles, bool smooth) {
+    std::ostringstream text;
+    text.precision(17);
+    const int vertices = triangles * 3;
+    text << (smooth ? 16 : 14) << " " << vertices << " " << triangles << "\n";
+    for (int v = 0; v < vertices; ++v) {
+        const Vec3 p = random.in_box(2);
+        text << p.x << " " << p.y << " " << p.z;
+        if (smooth) {
+            const Vec3 n = random.unit_vector();
+            text << "  " << n.x << " " << n.y << " " << n.z;
+        }
+        text << "\n";
+    }
+    for (int t = 0; t < triangles; ++t) text << 3 * t << " " << 3 * t + 1 << " " << 3 * t + 2 << "\n";
+    text << "100 1 0 0 0 1 1 0 1\n";
+    return text.str();
+}
+
+TEST(a_lone_mesh_is_asked_directly_and_answers_as_the_scan) {
+    // A scene whose one bounded object is a mesh (a model, alone or on a floor) asks the mesh
+    // without testing its box first (ObjectIndex, lone_hierarchy_): the mesh's own walk turns
+    // away a ray outside its box. The answers must be the linear scan's, for rays that
+    // miss the box as for rays aimed into it; a mesh in a frame still waits behind its box.
+    const std::string floor = "2 -3  0 1 0  100 0 1 0 0 1 1 0 1\n";
+    const std::string frame = "7  0.5 0 0  1 0 0  0 1 0  0 0 1  ";
+    Random random(404);
+    for (int variant = 0; variant < 6; ++variant) {
+        const bool smooth = variant % 2 == 1, on_floor = variant >= 2, framed = variant >= 4;
+        std::string text = kTestViewer;
+        if (on_floor) text += floor;
+        text += (framed ? frame : "") + random_mesh(random, 300, smooth);
+        const Scene scene = parse_scene(text);
+        const ObjectIndex& index = *scene.index;
+        CHECK_EQ(index.bounded_count(), std::size_t{1});
+        CHECK_EQ(scene.objects.back().shape.own_hierarchy(), !framed);
+        CHECK_EQ(disagreements(scene, random, 3000, {{0, 0, 0}, {1, 1, 1}, {-1, 0.5, -1}}), 0);
+        // A ray far from the mesh's box: asked directly unless framed; the floor is asked always.
+        const Ray away{{50, 50, 50}, {0, 0, 1}};
+        std::uint64_t tests = 0;
+        ObjectIndex::Found found;
+        index.closest(away, {1e-9, kInfinity}, found, &tests);
+        CHECK_EQ(tests, std::uint64_t{(on_floor ? 1u : 0u) + (framed ? 0u : 1u)});
+        tests = 0;
+        CHECK(!index.any(away, {1e-9, 100}, nullptr, &tests));
+        CHECK_EQ(tests, std::uint64_t{(on_floor ? 1u : 0u) + (framed ? 0u : 1u)});
+    }
+}
+
 TEST(many_parts_marks_meshes_and_composites_through_frames) {
     // The column that keeps a last blocker from being asked ahead of its box (Shape::many_parts).
     const std::string surface = " 100 1 0 0 0 1 1 0 1\n";

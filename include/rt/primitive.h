@@ -115,6 +115,11 @@ struct PrimitiveFunctions {
     // hierarchy then asks a shadow ray's last blocker only behind its box, where a cheap
     // primitive is asked first. nullptr: false.
     PropertyFn* many_parts = nullptr;
+    // True where the primitive's test starts with a hierarchy of its own over its parts,
+    // whose boxes hold all of them: a mesh's triangles (14, 15, 16). A ray outside its box
+    // then costs it about one box test, so a scene whose one bounded object this is asks it
+    // directly rather than testing its box first. nullptr: false.
+    PropertyFn* own_hierarchy = nullptr;
     // For a primitive that is a sphere and nothing else (1): its centre and squared radius,
     // which the object hierarchy copies into its leaves to test it inline, without a call
     // (primitives/sphere_test.h, the same code as its intersect). nullptr: not a sphere.
@@ -181,6 +186,9 @@ struct Shape {
     }
     bool many_parts() const {
         return functions->many_parts != nullptr && functions->many_parts(data.get());
+    }
+    bool own_hierarchy() const {
+        return functions->own_hierarchy != nullptr && functions->own_hierarchy(data.get());
     }
 };
 

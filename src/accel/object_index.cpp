@@ -83,6 +83,7 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
             entries_[place[j]] = entry(objects[bounded[j]], bounded[j]);
     });
     entries_.insert(entries_.end(), unbounded.begin(), unbounded.end());
+    lone_hierarchy_ = bounded_count_ == 1 && objects[bounded[0]].shape.own_hierarchy();
 }
 
 ObjectIndex::Entry ObjectIndex::entry(const Object& object, std::uint32_t index) {
@@ -139,7 +140,10 @@ bool ObjectIndex::closest(const Ray& ray, Interval range, Found& found,
     };
     // The unbounded objects first: a floor under everything prunes much of the tree.
     for (auto i = static_cast<std::uint32_t>(bounded_count_); i < entries_.size(); ++i) test(i);
-    bvh_.closest(ray, range.t_min, best, test);
+    if (lone_hierarchy_)
+        test(0);
+    else
+        bvh_.closest(ray, range.t_min, best, test);
     return best_object != kNone;
 }
 
@@ -169,6 +173,7 @@ bool ObjectIndex::any(const Ray& ray, Interval range, Blocker* last, std::uint64
     // not tried ahead) has nothing more to offer: its walk would prepare the ray and test the
     // box only to skip it.
     if (bounded_count_ == 1 && tried == 0) return false;
+    if (lone_hierarchy_) return stops(0);
     return bvh_.any(ray, range.t_min, range.t_max, stops);
 }
 

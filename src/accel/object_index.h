@@ -84,6 +84,11 @@ class ObjectIndex {
     std::vector<Entry, UninitializedAllocator<Entry>> entries_;
     std::size_t bounded_count_ = 0;
     std::size_t object_count_ = 0;
+    // The one bounded object has a hierarchy of its own (Shape::own_hierarchy: a model,
+    // alone or on a floor): it is asked directly, since its own walk turns away a ray
+    // outside its box about as fast as this one's would, and the walk here cost the SPD's
+    // nurbtst 9 % of its instructions (docs/performance.md, "A lone mesh asked directly").
+    bool lone_hierarchy_ = false;
 };
 
 }  // namespace rt

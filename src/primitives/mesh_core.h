@@ -149,7 +149,8 @@ Vec3 shading_normal(const void* shape, const Vec3& point, const Hit& hit);
 Bounds bounds(const void* shape);
 }  // namespace shaded
 
-// The many_parts column of every mesh: a test searches its triangles.
+// The many_parts and own_hierarchy columns of every mesh: a test searches its triangles,
+// through the mesh's own hierarchy.
 inline bool many_parts(const void*) { return true; }
 
 // Out of line: the part of build that does not depend on where the indices come from.
