@@ -815,7 +815,8 @@ std::string random_mesh(Random& random, int triangles, bool smooth) {
         }
         text << "\n";
     }
-    for (int t = 0; t < triangles; ++t) text << 3 * t << " " << 3 * t + 1 << " " << 3 * t + 2 << "\n";
+    for (int t = 0; t < triangles; ++t)
+        text << 3 * t << " " << 3 * t + 1 << " " << 3 * t + 2 << "\n";
     text << "100 1 0 0 0 1 1 0 1\n";
     return text.str();
 }
