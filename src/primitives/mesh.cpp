@@ -65,7 +65,7 @@ extern const PrimitiveFunctions functions{.read = read,
                                           .normal = normal,
                                           .bounds = bounds,
                                           .intersect_any = intersect_any,
-                                          .many_parts = mesh_core::many_parts,
-                                          .own_hierarchy = mesh_core::many_parts};
+                                          .many_parts = mesh_core::always_true,
+                                          .own_hierarchy = mesh_core::always_true};
 
 }  // namespace rt::mesh

@@ -149,9 +149,9 @@ Vec3 shading_normal(const void* shape, const Vec3& point, const Hit& hit);
 Bounds bounds(const void* shape);
 }  // namespace shaded
 
-// The many_parts and own_hierarchy columns of every mesh: a test searches its triangles,
-// through the mesh's own hierarchy.
-inline bool many_parts(const void*) { return true; }
+// The many_parts and own_hierarchy columns of every mesh, true for each: a test searches its
+// triangles, through the mesh's own hierarchy.
+inline bool always_true(const void*) { return true; }
 
 // Out of line: the part of build that does not depend on where the indices come from.
 void finish(Core& core, Triangles& triangles, int threads);

@@ -60,7 +60,7 @@ extern const PrimitiveFunctions functions{.read = read,
                                           .bounds = mesh_core::shaded::bounds,
                                           .intersect_any = mesh_core::shaded::intersect_any,
                                           .shading_normal = mesh_core::shaded::shading_normal,
-                                          .many_parts = mesh_core::many_parts,
-                                          .own_hierarchy = mesh_core::many_parts};
+                                          .many_parts = mesh_core::always_true,
+                                          .own_hierarchy = mesh_core::always_true};
 
 }  // namespace rt::smooth_mesh

@@ -161,11 +161,11 @@ Spectrum Tracer::lights_at(const Vec3& point, const Vec3& facing_normal, const V
             const double highlight = dot(reflected, s.direction);
             if (options_.specular && ks > 0 && highlight > 0)
                 term += Spectrum(ks * std::pow(highlight, m.ke));
-            if (!Diffuse &&
-                ((s.intensity * term).is_black() ||
-                 (options_.shadows && blocked(shadow_ray, s.distance, &last_blocker(l)))))
+            const Spectrum lit = s.intensity * term;
+            if (!Diffuse && (lit.is_black() || (options_.shadows &&
+                                                blocked(shadow_ray, s.distance, &last_blocker(l)))))
                 continue;
-            total += s.intensity * term;
+            total += lit;
         }
     }
     return total;
