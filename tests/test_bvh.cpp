@@ -200,6 +200,91 @@ TEST(a_cheaper_node_splits_the_same_leaves_further) {
     }
 }
 
+double half_area(const Bounds& b) {
+    const Vec3 d = b.max - b.min;
+    return d.x * d.y + d.y * d.z + d.z * d.x;
+}
+
+Bounds box_of(std::span<const Bounds> boxes, std::span<const std::uint32_t> which) {
+    Bounds b;
+    for (const std::uint32_t i : which) {
+        b.expand(boxes[i].min);
+        b.expand(boxes[i].max);
+    }
+    return b;
+}
+
+TEST(a_small_node_takes_the_cheapest_split_of_its_sorted_centres) {
+    // Nodes of up to 32 references are split by a sweep over every place between distinct
+    // centres along the axis, not by bins: the root's split (or its leaf) must be the cheapest
+    // of those by the SAH, within the float boxes' rounding.
+    Random random(41);
+    int splits = 0, leaves = 0;
+    for (int trial = 0; trial < 600; ++trial) {
+        const auto n = static_cast<std::size_t>(3 + trial % 30);
+        std::vector<Bounds> boxes = random_boxes(random, n, 10, trial % 2 == 0 ? 1 : 40);
+        if (trial % 3 == 0) boxes[1] = boxes[0];  // a pair of equal centres
+        const Bvh bvh(boxes);
+        double centre_lo[3], centre_hi[3];
+        for (int k = 0; k < 3; ++k) {
+            centre_lo[k] = HUGE_VAL;
+            centre_hi[k] = -HUGE_VAL;
+            for (const Bounds& b : boxes) {
+                centre_lo[k] = std::min<double>(centre_lo[k], build_centre(b, k));
+                centre_hi[k] = std::max<double>(centre_hi[k], build_centre(b, k));
+            }
+        }
+        const double extent[3] = {centre_hi[0] - centre_lo[0], centre_hi[1] - centre_lo[1],
+                                  centre_hi[2] - centre_lo[2]};
+        const int axis = extent[0] >= extent[1] && extent[0] >= extent[2] ? 0
+                         : extent[1] >= extent[2]                         ? 1
+                                                                          : 2;
+        std::vector<std::uint32_t> sorted(n);
+        for (std::uint32_t i = 0; i < n; ++i) sorted[i] = i;
+        std::sort(sorted.begin(), sorted.end(), [&](std::uint32_t a, std::uint32_t b) {
+            return build_centre(boxes[a], axis) < build_centre(boxes[b], axis);
+        });
+        const double whole = half_area(box_of(boxes, sorted));
+        double cheapest = HUGE_VAL;
+        for (std::size_t s = 1; s < n; ++s) {
+            if (!(build_centre(boxes[sorted[s - 1]], axis) < build_centre(boxes[sorted[s]], axis)))
+                continue;
+            const std::span<const std::uint32_t> all(sorted);
+            const double cost =
+                static_cast<double>(s) * half_area(box_of(boxes, all.first(s))) +
+                static_cast<double>(n - s) * half_area(box_of(boxes, all.subspan(s)));
+            cheapest = std::min(cheapest, Bvh::kPackedNodeCost + cost / whole);
+        }
+        const BvhNode& root = bvh.nodes()[0];
+        if (root.is_leaf()) {
+            ++leaves;
+            CHECK(n <= Bvh::kMaxLeafSize);
+            CHECK(cheapest >= static_cast<double>(n) * (1 - 1e-4));
+            continue;
+        }
+        ++splits;
+        const BvhNode& first = bvh.nodes()[1];
+        const BvhNode& second = bvh.nodes()[root.offset];
+        const std::uint32_t middle = check_split(bvh, boxes, 1).second;
+        const double chosen =
+            Bvh::kPackedNodeCost + (middle * half_area(node_box(first)) +
+                                    static_cast<double>(n - middle) * half_area(node_box(second))) /
+                                       half_area(node_box(root));
+        CHECK(chosen <= cheapest * (1 + 1e-4));
+        // Never between equal centres (the bins' rule too): apart along the axis.
+        float first_max = -HUGE_VALF, second_min = HUGE_VALF;
+        for (std::uint32_t i = 0; i < n; ++i) {
+            const float c = build_centre(boxes[bvh.order()[i]], axis);
+            if (i < middle)
+                first_max = std::max(first_max, c);
+            else
+                second_min = std::min(second_min, c);
+        }
+        CHECK(first_max < second_min);
+    }
+    CHECK(splits > 300 && leaves > 20);
+}
+
 TEST(a_scene_of_spheres_only_takes_a_meshs_node_cost) {
     // Spheres are tested inline from the leaves, as a mesh's triangles are; any object
     // tested through the table makes the scene's hierarchy take the object cost.

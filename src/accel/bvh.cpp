@@ -5,7 +5,8 @@
 // The build works on a compact copy of the boxes (floats, rounded outward, with the
 // primitive's index), partitioned in place, so every pass reads memory in order. One pass per
 // node bins the primitives; the bins already hold the children's boxes, so the partition that
-// follows is the only other pass.
+// follows is the only other pass. A node of at most 32 primitives is split by a sweep over
+// them in order instead, which costs it less than its bins would.
 #include "accel/bvh.h"
 
 #include <algorithm>
@@ -31,6 +32,10 @@ constexpr int kBins = 16;
 // Boxes are widened by this much relative to their coordinates, so that a hit point a
 // primitive computes a rounding error outside its exact bounds still lies in its node.
 constexpr double kBoxPadding = 1e-9;
+// Nodes of at most this many references are split by a sweep over their references sorted
+// along the axis, not by bins: a small node's bins cost more than its references.
+constexpr std::uint32_t kSmallNode = 32;
+static_assert(kSmallNode <= 32);  // build_small keeps a reference's place in five bits
 // Below this many primitives a subtree is not worth a thread of its own.
 constexpr std::uint32_t kParallelBuildMinimum = 50000;
 
@@ -192,8 +197,7 @@ class Builder {
     // `spare` counts the threads that may still be started (shared by every builder of one
     // tree, and lent back by a thread while it waits for another).
     // `node_cost`: visiting a node, relative to testing one primitive (Bvh's constructor).
-    Builder(References& refs, Bvh::Nodes& nodes, std::atomic<int>& spare,
-            double node_cost)
+    Builder(References& refs, Bvh::Nodes& nodes, std::atomic<int>& spare, double node_cost)
         : refs_(refs), nodes_(nodes), spare_(spare), node_cost_(node_cost) {}
 
     Range whole() const { return measured(0, static_cast<std::uint32_t>(refs_.size())); }
@@ -234,6 +238,9 @@ class Builder {
     // Splits in the middle of the range, for primitives no position separates.
     std::pair<Range, Range> median_split(const Range& range, int axis);
     void make_leaf(std::size_t node, const Range& range);
+    // The SAH split of a small node (at most kSmallNode references) by a sweep over its
+    // references in order along the axis; a leaf where that is cheaper.
+    void build_small(std::size_t node, const Range& range, int axis, int depth);
     void build_children(std::size_t node, const Range& first, const Binned* first_bins,
                         const Range& second, const Binned* second_bins, int depth);
     // Takes a spare thread if there is one.
@@ -276,7 +283,7 @@ void Builder::make_leaf(std::size_t node, const Range& range) {
 
 BinPlan Builder::plan_for(const Range& range, int depth) const {
     BinPlan plan;
-    if (range.count() < 2 || depth >= Bvh::kMaxSahDepth || surely_leaf(range.count()))
+    if (range.count() <= kSmallNode || depth >= Bvh::kMaxSahDepth || surely_leaf(range.count()))
         return plan;
     const Spread spread(range.centres);
     const double extent = spread.extent[spread.axis];
@@ -431,6 +438,60 @@ void Builder::partition(const Range& range, const Binned& binned, const SahSplit
     }
 }
 
+void Builder::build_small(std::size_t node, const Range& range, int axis, int depth) {
+    const std::uint32_t count = range.count();
+    Reference* const refs = refs_.data() + range.begin;
+    // The references' places in order along the axis, without a branch: each reference's
+    // rank is how many keys are below its own. A key is its centre's bits in an order that
+    // follows the float's (the lowest five bits given to its place in the range, so that no
+    // two are equal and the ranks are a permutation, even for NaN).
+    std::int32_t key[kSmallNode];
+    for (std::uint32_t i = 0; i < count; ++i) {
+        const auto bits = std::bit_cast<std::int32_t>(refs[i].centre[axis]);
+        const std::int32_t ordered = bits ^ ((bits >> 31) & 0x7fffffff);
+        key[i] = (ordered & ~std::int32_t{31}) | static_cast<std::int32_t>(i);
+    }
+    std::uint8_t order[kSmallNode];
+    for (std::uint32_t i = 0; i < count; ++i) {
+        std::uint32_t rank = 0;
+        for (std::uint32_t j = 0; j < count; ++j) rank += key[j] < key[i] ? 1 : 0;
+        order[rank] = static_cast<std::uint8_t>(i);
+    }
+    // As best_split: the boxes above each place from the right, then the cost of each split
+    // from the left; the first of equal costs wins.
+    std::array<double, kSmallNode> area_above;
+    Box above;
+    for (std::uint32_t s = count - 1; s > 0; --s) {
+        above.add(refs[order[s]].box());
+        area_above[s] = above.half_area();
+    }
+    double best_cost = kInfinity;
+    std::uint32_t best_first = 0;  // references going to the first child
+    Box below;
+    for (std::uint32_t s = 0; s + 1 < count; ++s) {
+        below.add(refs[order[s]].box());
+        // Not between equal centres, which bins never part either.
+        if (!(refs[order[s]].centre[axis] < refs[order[s + 1]].centre[axis])) continue;
+        const double cost = (s + 1) * below.half_area() + (count - s - 1) * area_above[s + 1];
+        if (cost < best_cost) {
+            best_cost = cost;
+            best_first = s + 1;
+        }
+    }
+    best_cost = node_cost_ + best_cost / range.box.half_area();
+    if (count <= Bvh::kMaxLeafSize && !(best_cost < count)) return make_leaf(node, range);
+    if (!std::isfinite(best_cost)) {
+        const auto [first, second] = median_split(range, axis);
+        return build_children(node, first, nullptr, second, nullptr, depth);
+    }
+    Reference sorted[kSmallNode];
+    for (std::uint32_t i = 0; i < count; ++i) sorted[i] = refs[order[i]];
+    std::memcpy(refs, sorted, count * sizeof(Reference));
+    const std::uint32_t middle = range.begin + best_first;
+    build_children(node, measured(range.begin, middle), nullptr, measured(middle, range.end),
+                   nullptr, depth);
+}
+
 void Builder::build_children(std::size_t node, const Range& first, const Binned* first_bins,
                              const Range& second, const Binned* second_bins, int depth) {
     if (second.count() < kParallelBuildMinimum || !take_spare()) {
@@ -499,6 +560,7 @@ void Builder::build(const Range& range, const Binned* binned, int depth) {
         }
         // At node cost 2 (a mesh, or spheres only) that is every node of two references.
         if (surely_leaf(count)) return make_leaf(node, range);
+        if (count <= kSmallNode) return build_small(node, range, spread.axis, depth);
         own.reset(plan_for(range, depth));
         bin(range, own);
         binned = &own;
