@@ -283,6 +283,32 @@ TEST(a_small_node_takes_the_cheapest_split_of_its_sorted_centres) {
         CHECK(first_max < second_min);
     }
     CHECK(splits > 300 && leaves > 20);
+    // Centres along x a few units in the last place apart, in no order (the ranks' keys
+    // cannot tell the nearest of them apart): every split still parts them by position.
+    int parted = 0;
+    for (int trial = 0; trial < 200; ++trial) {
+        const auto n = static_cast<std::size_t>(9 + trial % 24);
+        std::vector<Bounds> boxes;
+        for (std::size_t i = 0; i < n; ++i) {
+            const double x = 4 + static_cast<double>(random.next() % 40) * 0x1p-21;  // float ulps
+            boxes.push_back({{x - 1, -1, -1}, {x + 1, 1, 1}});
+        }
+        const Bvh bvh(boxes);
+        for (std::uint32_t index = 0; index < bvh.nodes().size(); ++index) {
+            const BvhNode& node = bvh.nodes()[index];
+            if (node.is_leaf()) continue;
+            const auto first = check_split(bvh, boxes, index + 1);
+            const auto second = check_split(bvh, boxes, node.offset);
+            float first_max = -HUGE_VALF, second_min = HUGE_VALF;
+            for (std::uint32_t i = first.first; i < first.second; ++i)
+                first_max = std::max(first_max, build_centre(boxes[bvh.order()[i]], 0));
+            for (std::uint32_t i = second.first; i < second.second; ++i)
+                second_min = std::min(second_min, build_centre(boxes[bvh.order()[i]], 0));
+            CHECK(first_max < second_min);
+            ++parted;
+        }
+    }
+    CHECK(parted > 200);
 }
 
 TEST(a_scene_of_spheres_only_takes_a_meshs_node_cost) {

@@ -35,7 +35,6 @@ constexpr double kBoxPadding = 1e-9;
 // Nodes of at most this many references are split by a sweep over their references sorted
 // along the axis, not by bins: a small node's bins cost more than its references.
 constexpr std::uint32_t kSmallNode = 32;
-static_assert(kSmallNode <= 32);  // build_small keeps a reference's place in five bits
 // Below this many primitives a subtree is not worth a thread of its own.
 constexpr std::uint32_t kParallelBuildMinimum = 50000;
 
@@ -442,20 +441,37 @@ void Builder::build_small(std::size_t node, const Range& range, int axis, int de
     const std::uint32_t count = range.count();
     Reference* const refs = refs_.data() + range.begin;
     // The references' places in order along the axis, without a branch: each reference's
-    // rank is how many keys are below its own. A key is its centre's bits in an order that
-    // follows the float's (the lowest five bits given to its place in the range, so that no
-    // two are equal and the ranks are a permutation, even for NaN).
-    std::int32_t key[kSmallNode];
+    // rank is how many keys are below its own. A key is its centre as an integer whose order
+    // is the float's, the lowest five bits given to its place in the range, so that no two
+    // keys are equal and the ranks are a permutation, even for NaN.
+    std::int32_t exact[kSmallNode], key[kSmallNode];
     for (std::uint32_t i = 0; i < count; ++i) {
         const auto bits = std::bit_cast<std::int32_t>(refs[i].centre[axis]);
-        const std::int32_t ordered = bits ^ ((bits >> 31) & 0x7fffffff);
-        key[i] = (ordered & ~std::int32_t{31}) | static_cast<std::int32_t>(i);
+        exact[i] = bits ^ ((bits >> 31) & 0x7fffffff);
+        key[i] = (exact[i] & ~std::int32_t{31}) | static_cast<std::int32_t>(i);
     }
     std::uint8_t order[kSmallNode];
+    std::int32_t in_order[kSmallNode];  // exact[order[s]]
     for (std::uint32_t i = 0; i < count; ++i) {
         std::uint32_t rank = 0;
         for (std::uint32_t j = 0; j < count; ++j) rank += key[j] < key[i] ? 1 : 0;
         order[rank] = static_cast<std::uint8_t>(i);
+        in_order[rank] = exact[i];
+    }
+    // Centres within 32 units in the last place of each other were ranked by their places:
+    // the rare pair left out of order is moved by insertion, so that every split below parts
+    // the centres by position.
+    for (std::uint32_t s = 1; s < count; ++s) {
+        if (!(in_order[s] < in_order[s - 1])) continue;
+        const std::uint8_t moving = order[s];
+        const std::int32_t moving_key = in_order[s];
+        std::uint32_t j = s;
+        for (; j > 0 && moving_key < in_order[j - 1]; --j) {
+            order[j] = order[j - 1];
+            in_order[j] = in_order[j - 1];
+        }
+        order[j] = moving;
+        in_order[j] = moving_key;
     }
     // As best_split: the boxes above each place from the right, then the cost of each split
     // from the left; the first of equal costs wins.
