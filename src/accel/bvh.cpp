@@ -35,6 +35,7 @@ constexpr double kBoxPadding = 1e-9;
 // Nodes of at most this many references are split by a sweep over their references sorted
 // along the axis, not by bins: a small node's bins cost more than its references.
 constexpr std::uint32_t kSmallNode = 32;
+static_assert(kSmallNode <= 32);  // build_small gives a reference's place five bits of its key
 // Below this many primitives a subtree is not worth a thread of its own.
 constexpr std::uint32_t kParallelBuildMinimum = 50000;
 
