@@ -1,6 +1,7 @@
 // Sphere (ID 1) against the closed form: the geometric solution of the ray-sphere problem.
 #include <cmath>
 
+#include "accel/sphere_cull.h"
 #include "primitives/sphere_test.h"
 #include "random_rays.h"
 #include "scene_util.h"
@@ -29,6 +30,24 @@ TEST(random_rays_match_closed_form) {
     CHECK(counts.misses > 5000);
     CHECK(inside > 100);
 }
+
+namespace {
+
+// Range ends on each of a quadratic's two computed roots and one to three doubles either side.
+void add_ends_around(std::vector<double>& ends, double near, double far) {
+    for (const double root : {near, far}) {
+        double below = root, above = root;
+        ends.push_back(root);
+        for (int step = 0; step < 3; ++step) {
+            below = std::nextafter(below, -kInfinity);
+            above = std::nextafter(above, kInfinity);
+            ends.push_back(below);
+            ends.push_back(above);
+        }
+    }
+}
+
+}  // namespace
 
 // The early decision (quadratic_surely_out_of_range) must never drop a sphere the quadratic's
 // roots would keep: on spheres from 2^-20 to 2^20 in radius, far and near, rays from inside,
@@ -60,16 +79,7 @@ TEST(an_early_decision_never_drops_a_crossing) {
         std::vector<double> ends{0,          1e-9 * scale,      scale * random.uniform(0, 8),
                                  near * 0.5, near * (1 - 1e-9), near * (1 - 1e-13),
                                  far * 2,    kInfinity};
-        for (const double root : {near, far}) {
-            double below = root, above = root;
-            ends.push_back(root);
-            for (int step = 0; step < 3; ++step) {
-                below = std::nextafter(below, -kInfinity);
-                above = std::nextafter(above, kInfinity);
-                ends.push_back(below);
-                ends.push_back(above);
-            }
-        }
+        add_ends_around(ends, near, far);
         for (const double t_min : ends) {
             for (const double t_max : ends) {
                 if (!(t_min >= 0) || !(t_min <= t_max)) continue;
@@ -164,4 +174,114 @@ TEST(bad_radius_is_an_error) {
                    "test.in:2:3: sphere radius must be > 0, got -1");
     CHECK_CONTAINS(scene_error(std::string(kTestViewer) + "1 0 0 0 0 100 1 1 1 0 1 1 0 1"),
                    "sphere radius must be > 0, got 0");
+}
+
+// ---- The hierarchy's cull of eight spheres at a time (accel/sphere_cull.h) ----
+
+namespace {
+
+// Whether the cull keeps lane `lane` of the group, asked as the portable walk asks and, where
+// the processor has AVX2, as the AVX2 walk does; the two must agree.
+unsigned cull_keeps(const SphereCull& cull, const Ray& ray, Interval range, std::uint32_t first,
+                    std::uint32_t count) {
+    const SphereCull::Ray8 r = SphereCull::prepare(ray, range.t_min);
+    const unsigned portable = cull.keep<false>(r, first, count, range.t_max);
+#if RT_AVX2_PATH
+    if (kHasAvx2) CHECK_EQ(cull.keep<true>(r, first, count, range.t_max), portable);
+#endif
+    return portable;
+}
+
+}  // namespace
+
+// The cull must never drop a sphere the exact test finds a crossing of in range: the same
+// spheres, rays and range ends as above (from inside, outside, on the surface and grazing,
+// at every scale from 2^-20 to 2^20, ends on the computed roots and a few doubles either
+// side), some at scales down to 2^-75 and up to 2^55, each sphere in a random lane of a
+// group of eight among seven others. And it must drop most of the rest, by each of its three
+// rules (the floor under its bounds, kFloor, fails this test when taken away).
+TEST(the_cull_never_drops_a_crossing_and_drops_most_misses) {
+    Random random(78);
+    int crossed = 0, dropped_miss = 0, dropped_behind = 0, dropped_beyond = 0;
+    for (int i = 0; i < 20000; ++i) {
+        // Now and then a scale where the floats' squares would be subnormal, or past the
+        // cull's range of magnitudes (1e15), where it keeps everything.
+        const int exponent = i % 11 == 0   ? static_cast<int>(random.uniform(-75, -60))
+                             : i % 13 == 0 ? static_cast<int>(random.uniform(40, 55))
+                                           : static_cast<int>(random.uniform(-20, 20));
+        const double scale = std::ldexp(1.0, exponent);
+        const double r = scale * random.uniform(0.01, 1);
+        const Vec3 centre = random.in_box(scale * (i % 4 == 0 ? 1e4 : 3));
+        const Vec3 direction = random.unit_vector();
+        Vec3 origin = centre + random.in_box(r * (i % 3 == 0 ? 0.7 : 4));
+        if (i % 5 == 0) origin = centre + random.unit_vector() * r;
+        if (i % 7 == 0) {
+            const Vec3 side = normalized(cross(direction, random.unit_vector()));
+            origin = centre + side * (r * random.uniform(0.999999, 1.000001)) -
+                     direction * (r * random.uniform(-3, 3));
+        }
+        const Ray ray{origin, direction};
+        const SphereParameters sphere{centre, r * r};
+        // The group: the sphere at `lane` of 8 places starting at `first`, the others random.
+        const std::uint32_t count = 1 + static_cast<std::uint32_t>(random.next() % 8);
+        const std::uint32_t lane = static_cast<std::uint32_t>(random.next() % count);
+        const std::uint32_t first = static_cast<std::uint32_t>(random.next() % 3);
+        SphereCull cull(first + count);
+        for (std::uint32_t k = 0; k < count; ++k)
+            cull.set(first + k, k == lane ? sphere
+                                          : SphereParameters{random.in_box(scale * 4),
+                                                             scale * random.uniform(0.01, 1)});
+        const SphereQuadratic k = sphere_quadratic(sphere, ray);
+        double near = 0, far = 0;
+        const bool roots =
+            k.discriminant >= 0 && quadratic_crossing(k, {-kInfinity, kInfinity}, near);
+        if (!roots || !quadratic_crossing(k, {near, kInfinity}, far)) far = near;
+        std::vector<double> ends{0, 1e-9 * scale, scale * random.uniform(0, 8), kInfinity};
+        if (roots) add_ends_around(ends, near, far);
+        for (const double t_min : ends) {
+            for (const double t_max : ends) {
+                if (!(t_min >= 0) || !(t_min <= t_max)) continue;
+                double t = 0;
+                const bool crosses = sphere_crossing(sphere, ray, {t_min, t_max}, t);
+                const bool keeps =
+                    (cull_keeps(cull, ray, {t_min, t_max}, first, count) >> lane & 1) != 0;
+                if (crosses) {
+                    ++crossed;
+                    CHECK(keeps);
+                    if (!keeps) return;  // one report is enough
+                } else if (!keeps) {
+                    ++(k.discriminant < 0 ? dropped_miss
+                       : k.b > 0          ? dropped_behind
+                                          : dropped_beyond);
+                }
+            }
+        }
+    }
+    CHECK(crossed > 10000);
+    CHECK(dropped_miss > 20000);
+    CHECK(dropped_behind > 5000);
+    CHECK(dropped_beyond > 1000);  // the whole sphere past t_max: few of these ranges
+}
+
+TEST(the_cull_keeps_what_it_cannot_judge) {
+    // Places never set, spheres and origins beyond its range of magnitudes, a direction not
+    // of unit length, and NaN: kept, every lane.
+    SphereCull cull(8);
+    cull.set(1, {{1e16, 0, 0}, 1});
+    cull.set(2, {{0, 0, 10}, 1e32});
+    cull.set(3, {{0, 0, 10}, 1});
+    cull.set(4, {{std::nan(""), 0, 10}, 1});
+    cull.set(5, {{0, 100, 10}, std::nan("")});
+    const Interval all{0, kInfinity};
+    CHECK_EQ(cull_keeps(cull, {{0, 0, 0}, {1, 0, 0}}, all, 0, 3), 7u);
+    CHECK_EQ(cull_keeps(cull, {{0, 0, 0}, {1, 0, 0}}, all, 3, 3), 6u);       // 3 is missed
+    CHECK_EQ(cull_keeps(cull, {{0, 0, 0}, {0, 0, 1}}, all, 3, 1), 1u);       // 3 is ahead
+    CHECK_EQ(cull_keeps(cull, {{0, 0, 0}, {0, 0, 1}}, {0, 8.9}, 3, 1), 0u);  // beyond 8.9
+    CHECK_EQ(cull_keeps(cull, {{0, 0, 0}, {0, 0, -1}}, all, 3, 1), 0u);      // behind
+    CHECK_EQ(cull_keeps(cull, {{0, 0, 0}, {0, 0, -1}}, {-1, kInfinity}, 3, 1), 1u);
+    CHECK_EQ(cull_keeps(cull, {{0, 0, 0}, {1, 0, 0}}, {0, -1}, 3, 1), 0u);  // missed all the same
+    CHECK_EQ(cull_keeps(cull, {{0, 0, 0}, {0, 0, 2}}, all, 3, 1), 1u);      // not a unit direction
+    CHECK_EQ(cull_keeps(cull, {{0, 0, 0}, {1, 0, 0}}, all, 0, 8), 0xf7u);
+    CHECK_EQ(cull_keeps(cull, {{2e15, 0, 0}, {1, 0, 0}}, all, 3, 1), 1u);
+    CHECK_EQ(cull_keeps(cull, {{std::nan(""), 0, 0}, {1, 0, 0}}, all, 3, 1), 1u);
 }

@@ -144,7 +144,8 @@ struct LaneVectors<8> {
 // fifteen instructions; on x86-64 it is one, movmskps (SSE, in every x86-64 build; its
 // eight-lane form needs AVX, so only the AVX2 walk asks for it, with Avx2). Renders took
 // 0.90-0.99 of the time (docs/performance.md, "The lanes' mask in one instruction").
-// Elsewhere (arm64) the lanes are gathered one by one, to the same bits.
+// Eight lanes elsewhere on x86-64 take two. On arm64 the lanes are gathered one by one, to
+// the same bits.
 #if RT_AVX2_PATH
 [[gnu::target("avx2")]] inline unsigned sign_bits_avx2(const LaneVectors<8>::Ints& lanes) {
     return static_cast<unsigned>(
@@ -159,6 +160,12 @@ template <int Lanes, bool Avx2>
     } else if constexpr (Lanes == 4) {
         return static_cast<unsigned>(
             __builtin_ia32_movmskps(reinterpret_cast<LaneVectors<4>::Floats>(lanes)));
+    } else {
+        // Eight lanes without AVX: two halves of four, one movmskps each.
+        LaneVectors<4>::Ints low, high;
+        std::memcpy(&low, &lanes, sizeof low);
+        std::memcpy(&high, reinterpret_cast<const char*>(&lanes) + sizeof low, sizeof high);
+        return sign_bits<4, false>(low) | sign_bits<4, false>(high) << 4;
     }
 #endif
     unsigned bits = 0;
@@ -205,6 +212,19 @@ class WideRay {
     float t_min_;
     bool usable_ = false;
 };
+
+// Calls leaf(first, count), telling it, where it takes a third argument, whether the walk
+// calling it is compiled for AVX2 (as std::bool_constant), so that a leaf's own vector code
+// inlined there can use that too (sign_bits).
+template <bool Avx2, class Leaf>
+[[gnu::always_inline]] inline decltype(auto) visit_leaf(Leaf& leaf, std::uint32_t first,
+                                                        std::uint32_t count) {
+    if constexpr (std::is_invocable_v<Leaf&, std::uint32_t, std::uint32_t,
+                                      std::bool_constant<Avx2>>)
+        return leaf(first, count, std::bool_constant<Avx2>{});
+    else
+        return leaf(first, count);
+}
 
 class Bvh {
   public:
@@ -287,10 +307,13 @@ class Bvh {
     // [first, first + count) in leaf order; for any, leaf returns true to stop.
     template <BoxTest Test = BoxTest::simd, class Leaf>
     void closest_leaves(const Ray& ray, double t_min, double& t_max, Leaf&& leaf) const {
-        walk<Test, true>(ray, t_min, t_max, [&](std::uint32_t first, std::uint32_t count) {
-            leaf(first, count);
-            return false;
-        });
+        walk<Test, true>(
+            ray, t_min, t_max,
+            [&](std::uint32_t first, std::uint32_t count, auto avx2)
+                __attribute__((always_inline)) {
+                    visit_leaf<decltype(avx2)::value>(leaf, first, count);
+                    return false;
+                });
     }
     template <BoxTest Test = BoxTest::simd, class Leaf>
     bool any_leaves(const Ray& ray, double t_min, double t_max, Leaf&& leaf) const {
@@ -360,7 +383,7 @@ bool Bvh::walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) c
         for (int i = 0; i < node.size; ++i) {
             double t_enter = 0;
             if (box_ray.enters(node.bound(i).data(), t_min, t_max, t_enter) &&
-                leaf(node.child[i], node.count[i]))
+                visit_leaf<false>(leaf, node.child[i], node.count[i]))
                 return true;
         }
         return false;
@@ -416,7 +439,7 @@ bool Bvh::walk_nodes(const Ray& ray, double t_min, const double& t_max, Leaf&& l
                 current = node.child[i];
                 continue;
             }
-            if (leaf(node.child[i], node.count[i])) return true;
+            if (visit_leaf<Avx2>(leaf, node.child[i], node.count[i])) return true;
         } else if (lanes != 0 && Nearest) {
             // Push the children entered but the nearest, farthest first (insertion by entry
             // distance), and go on into the nearest at once: it would be popped next.
@@ -437,7 +460,7 @@ bool Bvh::walk_nodes(const Ray& ray, double t_min, const double& t_max, Leaf&& l
                 current = node.child[nearest];
                 continue;
             }
-            if (leaf(node.child[nearest], node.count[nearest])) return true;
+            if (visit_leaf<Avx2>(leaf, node.child[nearest], node.count[nearest])) return true;
         } else if (lanes != 0) {
             // In any order: the children entered are pushed in lane order but the last,
             // which would be popped next, and that one is taken at once (t_max does not
@@ -452,7 +475,7 @@ bool Bvh::walk_nodes(const Ray& ray, double t_min, const double& t_max, Leaf&& l
                     current = node.child[last];
                     continue;
                 }
-                if (leaf(node.child[last], node.count[last])) return true;
+                if (visit_leaf<Avx2>(leaf, node.child[last], node.count[last])) return true;
             }
         }
         // Pop until a wide node the ray enters before the best hit so far (t_max may have
@@ -465,26 +488,30 @@ bool Bvh::walk_nodes(const Ray& ray, double t_min, const double& t_max, Leaf&& l
                 current = next.child;
                 break;
             }
-            if (leaf(next.child, next.count)) return true;
+            if (visit_leaf<Avx2>(leaf, next.child, next.count)) return true;
         }
     }
 }
 
 template <Bvh::BoxTest Test, class Visit>
 void Bvh::closest(const Ray& ray, double t_min, double& t_max, Visit&& visit) const {
-    walk<Test, true>(ray, t_min, t_max, [&](std::uint32_t first, std::uint32_t count) {
-        for (std::uint32_t i = first, end = first + count; i < end; ++i) visit(i);
-        return false;
-    });
+    walk<Test, true>(
+        ray, t_min,
+        t_max, [&](std::uint32_t first, std::uint32_t count) __attribute__((always_inline)) {
+            for (std::uint32_t i = first, end = first + count; i < end; ++i) visit(i);
+            return false;
+        });
 }
 
 template <Bvh::BoxTest Test, class Visit>
 bool Bvh::any(const Ray& ray, double t_min, double t_max, Visit&& visit) const {
-    return walk<Test, false>(ray, t_min, t_max, [&](std::uint32_t first, std::uint32_t count) {
-        for (std::uint32_t i = first, end = first + count; i < end; ++i)
-            if (visit(i)) return true;
-        return false;
-    });
+    return walk<Test, false>(
+        ray, t_min,
+        t_max, [&](std::uint32_t first, std::uint32_t count) __attribute__((always_inline)) {
+            for (std::uint32_t i = first, end = first + count; i < end; ++i)
+                if (visit(i)) return true;
+            return false;
+        });
 }
 
 // Inline and without branches: a ray is prepared once per query, and for a small scene that

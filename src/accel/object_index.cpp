@@ -1,8 +1,10 @@
 #include "accel/object_index.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <stdexcept>
 #include <type_traits>
 
@@ -84,6 +86,44 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
     });
     entries_.insert(entries_.end(), unbounded.begin(), unbounded.end());
     lone_hierarchy_ = bounded_count_ == 1 && objects[bounded[0]].shape.own_hierarchy();
+    if (spheres > 0 && cull_pays()) {
+        cull_ = SphereCull(bounded_count_);
+        for (std::size_t i = 0; i < bounded_count_; ++i)
+            if (entries_[i].sphere) cull_.set(i, entries_[i].sphere_parameters());
+    }
+}
+
+bool ObjectIndex::cull_pays() const {
+    const std::span<const WideNode> nodes = bvh_.wide_nodes();
+    if (nodes.empty()) return false;
+    // The SAH's measure: a ray through the root's box enters a leaf's box with the chance of
+    // their areas' ratio.
+    const auto half_area = [](const float lo[3], const float hi[3]) {
+        double d[3];
+        for (int k = 0; k < 3; ++k) d[k] = static_cast<double>(hi[k]) - lo[k];
+        return d[0] * d[1] + d[1] * d[2] + d[2] * d[0];
+    };
+    const WideNode& root = nodes[0];
+    float lo[3] = {HUGE_VALF, HUGE_VALF, HUGE_VALF}, hi[3] = {-HUGE_VALF, -HUGE_VALF, -HUGE_VALF};
+    for (int lane = 0; lane < root.size; ++lane)
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = std::min(lo[k], root.box[k][lane]);
+            hi[k] = std::max(hi[k], root.box[3 + k][lane]);
+        }
+    const double root_area = half_area(lo, hi);
+    if (!(root_area > 0) || !std::isfinite(root_area)) return false;
+    double expected = 0;  // spheres asked in large leaves, per ray through the root's box
+    for (const WideNode& node : nodes)
+        for (int lane = 0; lane < node.size; ++lane) {
+            if (node.count[lane] < kCulledLeaf) continue;
+            std::uint32_t spheres = 0;
+            for (std::uint32_t i = node.child[lane], end = i + node.count[lane]; i < end; ++i)
+                spheres += entries_[i].sphere ? 1 : 0;
+            const float leaf_lo[3] = {node.box[0][lane], node.box[1][lane], node.box[2][lane]};
+            const float leaf_hi[3] = {node.box[3][lane], node.box[4][lane], node.box[5][lane]};
+            expected += half_area(leaf_lo, leaf_hi) / root_area * spheres;
+        }
+    return expected >= kCulledTests;
 }
 
 ObjectIndex::Entry ObjectIndex::entry(const Object& object, std::uint32_t index) {
@@ -104,50 +144,83 @@ ObjectIndex::Entry ObjectIndex::entry(const Object& object, std::uint32_t index)
     return e;
 }
 
-bool ObjectIndex::hits(std::uint32_t i, const Ray& ray, Interval range, Hit& hit) const {
+// Inlined always, as the lambdas below that call them: in the walks, which are large, GCC
+// otherwise leaves them out of line (a call per object asked).
+[[gnu::always_inline]] inline bool ObjectIndex::hits(std::uint32_t i, const Ray& ray,
+                                                     Interval range, Hit& hit) const {
     const Entry& e = entries_[i];
     return e.sphere ? sphere_hit(e.sphere_parameters(), ray, range, hit)
                     : e.test.call.intersect(e.test.call.data, ray, range, hit);
 }
 
-bool ObjectIndex::blocks(std::uint32_t i, const Ray& ray, Interval range, Hit& scratch) const {
+[[gnu::always_inline]] inline bool ObjectIndex::blocks(std::uint32_t i, const Ray& ray,
+                                                       Interval range, Hit& scratch) const {
     const Entry& e = entries_[i];
     if (!e.sphere) return e.test.call.intersect_any(e.test.call.data, ray, range, scratch);
     double t = 0;
     return sphere_crossing(e.sphere_parameters(), ray, range, t);
 }
 
-bool ObjectIndex::closest(const Ray& ray, Interval range, Found& found,
-                          std::uint64_t* tests) const {
+template <bool Culled>
+bool ObjectIndex::closest_in(const Ray& ray, Interval range, Found& found,
+                             std::uint64_t* tests) const {
     double best = range.t_max;
     std::uint32_t best_object = kNone;
     std::uint64_t uncounted = 0;
     std::uint64_t& asked = tests != nullptr ? *tests : uncounted;
-    auto test = [&](std::uint32_t i) {
-        ++asked;
-        // The linear scan asks each object with its own best so far, and an intersect's
-        // answer near t_max can depend on t_max by a rounding (an affine scales it), so each
-        // object is asked a little past the best, and the answer is judged here: nearer wins,
-        // and at the same distance the object earlier in the file.
-        const double limit = best_object == kNone ? best : best + kTieSlack * best;
+    // The linear scan asks each object with its own best so far, and an intersect's answer
+    // near t_max can depend on t_max by a rounding (an affine scales it), so each object is
+    // asked a little past the best, and the answer is judged here: nearer wins, and at the
+    // same distance the object earlier in the file.
+    const auto limit = [&] { return best_object == kNone ? best : best + kTieSlack * best; };
+    auto ask = [&](std::uint32_t i) __attribute__((always_inline)) {
         Hit hit;
-        if (!hits(i, ray, {range.t_min, limit}, hit)) return;
+        if (!hits(i, ray, {range.t_min, limit()}, hit)) return;
         const std::uint32_t object = entries_[i].object;
         if (!(hit.t < best || (hit.t == best && object < best_object))) return;
         best = hit.t;
         best_object = object;
         found = {object, hit};
     };
+    auto test = [&](std::uint32_t i) __attribute__((always_inline)) {
+        ++asked;
+        ask(i);
+    };
     // The unbounded objects first: a floor under everything prunes much of the tree.
     for (auto i = static_cast<std::uint32_t>(bounded_count_); i < entries_.size(); ++i) test(i);
-    if (lone_hierarchy_)
+    if (lone_hierarchy_) {
         test(0);
-    else
+    } else if constexpr (Culled) {
+        SphereCull::Ray8 cull_ray{};
+        bool prepared = false;  // only once a large leaf is reached
+        bvh_.closest_leaves(
+            ray, range.t_min, best,
+            [&](std::uint32_t first, std::uint32_t count, auto avx2)
+                __attribute__((always_inline)) {
+                    if (count < kCulledLeaf) {
+                        for (std::uint32_t i = first; i < first + count; ++i) test(i);
+                        return;
+                    }
+                    if (!prepared) cull_ray = SphereCull::prepare(ray, range.t_min);
+                    prepared = true;
+                    // Every sphere is counted as asked, the ones the cull drops too: the
+                    // counts are those of the exact tests alone.
+                    asked += count;
+                    // The limit only falls as the leaf's spheres are asked: the cull's holds.
+                    for (unsigned keep =
+                             cull_.keep<decltype(avx2)::value>(cull_ray, first, count, limit());
+                         keep != 0; keep &= keep - 1)
+                        ask(first + static_cast<std::uint32_t>(std::countr_zero(keep)));
+                });
+    } else {
         bvh_.closest(ray, range.t_min, best, test);
+    }
     return best_object != kNone;
 }
 
-bool ObjectIndex::any(const Ray& ray, Interval range, Blocker* last, std::uint64_t* tests) const {
+template <bool Culled>
+bool ObjectIndex::any_in(const Ray& ray, Interval range, Blocker* last,
+                         std::uint64_t* tests) const {
     Hit hit;
     std::uint64_t uncounted = 0;
     std::uint64_t& asked = tests != nullptr ? *tests : uncounted;
@@ -156,13 +229,16 @@ bool ObjectIndex::any(const Ray& ray, Interval range, Blocker* last, std::uint64
     // search of its parts on every shadow ray, most of which its box turns away; the walk
     // below reaches it behind its box instead.
     std::uint32_t tried = kNone;
-    auto stops = [&](std::uint32_t i) {
+    // Whether entry i blocks, where `maybe` (the cull's verdict) allows it; counted as asked
+    // either way, but not the last blocker again.
+    auto stops_if = [&](std::uint32_t i, bool maybe) __attribute__((always_inline)) {
         if (i == tried) return false;
         ++asked;
-        if (!blocks(i, ray, range, hit)) return false;
+        if (!maybe || !blocks(i, ray, range, hit)) return false;
         if (last != nullptr) last->entry = i;
         return true;
     };
+    auto stops = [&](std::uint32_t i) __attribute__((always_inline)) { return stops_if(i, true); };
     if (last != nullptr && last->entry < entries_.size() && !entries_[last->entry].many_parts) {
         if (stops(last->entry)) return true;
         tried = last->entry;
@@ -174,8 +250,32 @@ bool ObjectIndex::any(const Ray& ray, Interval range, Blocker* last, std::uint64
     // box only to skip it.
     if (bounded_count_ == 1 && tried == 0) return false;
     if (lone_hierarchy_) return stops(0);
-    return bvh_.any(ray, range.t_min, range.t_max, stops);
+    if constexpr (Culled) {
+        SphereCull::Ray8 cull_ray{};
+        bool prepared = false;
+        return bvh_.any_leaves(
+            ray, range.t_min, range.t_max,
+            [&](std::uint32_t first, std::uint32_t count,
+                auto avx2) __attribute__((always_inline)) {
+                unsigned keep = (1u << count) - 1;
+                if (count >= kCulledLeaf) {
+                    if (!prepared) cull_ray = SphereCull::prepare(ray, range.t_min);
+                    prepared = true;
+                    keep = cull_.keep<decltype(avx2)::value>(cull_ray, first, count, range.t_max);
+                }
+                for (std::uint32_t k = 0; k < count; ++k)
+                    if (stops_if(first + k, (keep >> k & 1) != 0)) return true;
+                return false;
+            });
+    } else {
+        return bvh_.any(ray, range.t_min, range.t_max, stops);
+    }
 }
+
+template bool ObjectIndex::closest_in<false>(const Ray&, Interval, Found&, std::uint64_t*) const;
+template bool ObjectIndex::closest_in<true>(const Ray&, Interval, Found&, std::uint64_t*) const;
+template bool ObjectIndex::any_in<false>(const Ray&, Interval, Blocker*, std::uint64_t*) const;
+template bool ObjectIndex::any_in<true>(const Ray&, Interval, Blocker*, std::uint64_t*) const;
 
 void Scene::build_index(int threads) {
     index = std::make_shared<const ObjectIndex>(objects, threads);

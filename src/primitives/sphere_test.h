@@ -1,6 +1,8 @@
 // The ray-sphere test of the sphere (1), in one place: the sphere's own intersect function
 // and the hierarchy's packed leaves (accel/object_index.cpp), which test spheres inline
-// without a call, both run this code, so they find the same hits to the bit.
+// without a call, both run this code, so they find the same hits to the bit. Inlined always:
+// the hierarchy's walks are large functions, and GCC's limits on their growth otherwise keep
+// these out of line there, a call per sphere (spheres-10k's render, +3 % instructions).
 #pragma once
 
 #include <cmath>
@@ -22,7 +24,8 @@ struct SphereQuadratic {
 // The distance of the nearer of the quadratic's roots in range (the farther where the nearer
 // is out of it), or false when neither is in range: the root of larger magnitude first, then
 // the other as c / q, with no cancellation.
-inline bool quadratic_crossing(const SphereQuadratic& k, Interval range, double& t) {
+[[gnu::always_inline]] inline bool quadratic_crossing(const SphereQuadratic& k, Interval range,
+                                                      double& t) {
     const double q = -k.b - std::copysign(std::sqrt(k.discriminant), k.b);
     double near = q;
     double far = q != 0 ? k.c / q : 0;
@@ -37,7 +40,8 @@ inline bool quadratic_crossing(const SphereQuadratic& k, Interval range, double&
 // or beyond the nearest hit found so far (docs/performance.md, "Spheres decided early").
 // Every step is a comparison that rounding cannot turn: a product's or a difference's sign
 // is trusted only with a relative margin of 2^-50, eight times a double's rounding.
-inline bool quadratic_surely_out_of_range(const SphereQuadratic& k, Interval range) {
+[[gnu::always_inline]] inline bool quadratic_surely_out_of_range(const SphereQuadratic& k,
+                                                                 Interval range) {
     if (!(range.t_min >= 0)) return false;
     // The centre behind the origin (b > 0) and the origin outside (c > 0): the computed q is
     // at most -b < 0, and c / q negative, so neither root is in a range above zero.
@@ -58,7 +62,8 @@ inline bool quadratic_surely_out_of_range(const SphereQuadratic& k, Interval ran
 // The distance of the nearer of the ray's crossings with the sphere in range (the farther
 // where the nearer is out of it), or false when neither is in range. The ray's direction
 // must be unit length.
-inline bool sphere_crossing(const SphereParameters& s, const Ray& ray, Interval range, double& t) {
+[[gnu::always_inline]] inline bool sphere_crossing(const SphereParameters& s, const Ray& ray,
+                                                   Interval range, double& t) {
     const Vec3 oc = ray.origin - s.centre;
     const double b = dot(oc, ray.direction);
     const Vec3 perpendicular = oc - b * ray.direction;
@@ -82,7 +87,8 @@ inline SphereQuadratic sphere_quadratic(const SphereParameters& s, const Ray& ra
 }
 
 // The sphere's intersect (PrimitiveFunctions::intersect), for the table and the leaves alike.
-inline bool sphere_hit(const SphereParameters& s, const Ray& ray, Interval range, Hit& hit) {
+[[gnu::always_inline]] inline bool sphere_hit(const SphereParameters& s, const Ray& ray,
+                                              Interval range, Hit& hit) {
     double t = 0;
     if (!sphere_crossing(s, ray, range, t)) return false;
     hit.t = t;
