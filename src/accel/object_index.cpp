@@ -112,18 +112,28 @@ bool ObjectIndex::cull_pays() const {
         }
     const double root_area = half_area(lo, hi);
     if (!(root_area > 0) || !std::isfinite(root_area)) return false;
-    double expected = 0;  // spheres asked in large leaves, per ray through the root's box
-    for (const WideNode& node : nodes)
-        for (int lane = 0; lane < node.size; ++lane) {
-            if (node.count[lane] < kCulledLeaf) continue;
-            std::uint32_t spheres = 0;
-            for (std::uint32_t i = node.child[lane], end = i + node.count[lane]; i < end; ++i)
-                spheres += entries_[i].sphere ? 1 : 0;
-            const float leaf_lo[3] = {node.box[0][lane], node.box[1][lane], node.box[2][lane]};
-            const float leaf_hi[3] = {node.box[3][lane], node.box[4][lane], node.box[5][lane]};
-            expected += half_area(leaf_lo, leaf_hi) / root_area * spheres;
-        }
-    return expected >= kCulledTests;
+    // Objects, then spheres, asked in large leaves per ray through the root's box: the
+    // first from the nodes alone, so that a hierarchy far below the mark (a million spheres
+    // apart) reads none of its entries here.
+    const auto expected = [&](bool spheres_only) {
+        double sum = 0;
+        for (const WideNode& node : nodes)
+            for (int lane = 0; lane < node.size; ++lane) {
+                if (node.count[lane] < kCulledLeaf) continue;
+                std::uint32_t asked = node.count[lane];
+                if (spheres_only) {
+                    asked = 0;
+                    for (std::uint32_t i = node.child[lane], end = i + node.count[lane]; i < end;
+                         ++i)
+                        asked += entries_[i].sphere ? 1 : 0;
+                }
+                const float leaf_lo[3] = {node.box[0][lane], node.box[1][lane], node.box[2][lane]};
+                const float leaf_hi[3] = {node.box[3][lane], node.box[4][lane], node.box[5][lane]};
+                sum += half_area(leaf_lo, leaf_hi) / root_area * asked;
+            }
+        return sum;
+    };
+    return expected(false) >= kCulledTests && expected(true) >= kCulledTests;
 }
 
 ObjectIndex::Entry ObjectIndex::entry(const Object& object, std::uint32_t index) {
