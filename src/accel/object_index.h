@@ -87,13 +87,16 @@ class ObjectIndex {
     static constexpr std::uint32_t kCulledLeaf = 4;
     static_assert(Bvh::kMaxLeafSize <= SphereCull::kLanes);  // a leaf is one vector test
 
-    static Entry entry(const Object& object, std::uint32_t index);
     // The cull is built where a ray through the hierarchy asks, by the SAH's measure, at
     // least this many spheres of such leaves: where spheres overlap heavily (the bench's
     // shells-250 asks 31, shells-4000 319). Elsewhere its cost is not repaid: mirror-49 (4
     // spheres) took 1.10 of the time with it, spheres-10k (2) 1.03.
     static constexpr double kCulledTests = 16;
 
+    static Entry entry(const Object& object, std::uint32_t index);
+    // Whether a ray through the hierarchy asks at least kCulledTests spheres of its leaves
+    // of kCulledLeaf objects or more (each such leaf's area over the root's, times its
+    // spheres).
     bool cull_pays() const;
     template <bool Culled>
     bool closest_in(const Ray& ray, Interval range, Found& found, std::uint64_t* tests) const;
@@ -115,8 +118,8 @@ class ObjectIndex {
     // nurbtst 9 % of its instructions (docs/performance.md, "A lone mesh asked directly").
     bool lone_hierarchy_ = false;
     // Where cull_pays(): the spheres, culled eight at a time before their exact tests (in
-    // a scene of spheres that overlap heavily, which the hierarchy cannot part, the render
-    // took 0.76-0.79 of the time). Empty elsewhere.
+    // scenes of spheres that overlap heavily, which the hierarchy cannot part, the render
+    // took 0.73-0.94 of the time, the more overlap the less). Empty elsewhere.
     SphereCull cull_;
 };
 

@@ -1,8 +1,9 @@
 // A leaf's spheres culled eight at a time in float, ahead of their exact tests, for the object
-// hierarchies where that pays: those whose spheres mostly lie in large leaves, which is what
-// spheres that overlap heavily make (docs/performance.md, "Overlapping spheres culled eight at
-// a time"). The cull only ever drops a sphere that the exact double test (sphere_test.h) would
-// reject, so every hit, and every image, is what it is without the cull.
+// hierarchies where that pays: those whose rays meet many spheres in large leaves, which is
+// what spheres that overlap heavily make (ObjectIndex::cull_pays; docs/performance.md,
+// "Overlapping spheres culled eight at a time"). The cull only ever drops a sphere that the
+// exact double test (sphere_test.h) would reject, so every hit, and every image, is what it
+// is without the cull.
 #pragma once
 
 #include <algorithm>
