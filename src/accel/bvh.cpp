@@ -608,18 +608,12 @@ int Bvh::wide_children(std::uint32_t binary, std::uint32_t (&children)[WideNode:
     children[0] = binary + 1;
     children[1] = nodes_[binary].offset;
     int size = 2;
-    auto half_area = [&](std::uint32_t n) {
-        const float* b = nodes_[n].bound;
-        double d[3];
-        for (int k = 0; k < 3; ++k) d[k] = static_cast<double>(b[3 + k]) - b[k];
-        return d[0] * d[1] + d[1] * d[2] + d[2] * d[0];
-    };
     while (size < WideNode::kWidth) {
         int widest = -1;
         double widest_area = -1;
         for (int i = 0; i < size; ++i) {
             if (nodes_[children[i]].is_leaf()) continue;
-            const double area = half_area(children[i]);
+            const double area = bound_half_area(nodes_[children[i]].bound);
             // Not finite (boxes beyond float range) counts as the widest.
             if (widest < 0 || !(area <= widest_area)) {
                 widest = i;

@@ -50,6 +50,15 @@ struct BvhNode {
 };
 static_assert(sizeof(BvhNode) == 32);
 
+// Half the surface area of a box laid out as a node's bound (min x, y, z, then max): the
+// SAH's measure of how likely a ray through a parent enters it. In double: a float box's
+// sides can overflow a float product.
+inline double bound_half_area(const float bound[6]) {
+    double d[3];
+    for (int k = 0; k < 3; ++k) d[k] = static_cast<double>(bound[3 + k]) - bound[k];
+    return d[0] * d[1] + d[1] * d[2] + d[2] * d[0];
+}
+
 // A ray prepared for many box tests: the reciprocal of its direction, and for each axis which
 // of a node's two bounds the ray meets first.
 class BoxRay {

@@ -98,19 +98,14 @@ bool ObjectIndex::cull_pays() const {
     if (nodes.empty()) return false;
     // The SAH's measure: a ray through the root's box enters a leaf's box with the chance of
     // their areas' ratio.
-    const auto half_area = [](const float lo[3], const float hi[3]) {
-        double d[3];
-        for (int k = 0; k < 3; ++k) d[k] = static_cast<double>(hi[k]) - lo[k];
-        return d[0] * d[1] + d[1] * d[2] + d[2] * d[0];
-    };
     const WideNode& root = nodes[0];
-    float lo[3] = {HUGE_VALF, HUGE_VALF, HUGE_VALF}, hi[3] = {-HUGE_VALF, -HUGE_VALF, -HUGE_VALF};
+    float root_bound[6] = {HUGE_VALF, HUGE_VALF, HUGE_VALF, -HUGE_VALF, -HUGE_VALF, -HUGE_VALF};
     for (int lane = 0; lane < root.size; ++lane)
         for (int k = 0; k < 3; ++k) {
-            lo[k] = std::min(lo[k], root.box[k][lane]);
-            hi[k] = std::max(hi[k], root.box[3 + k][lane]);
+            root_bound[k] = std::min(root_bound[k], root.box[k][lane]);
+            root_bound[3 + k] = std::max(root_bound[3 + k], root.box[3 + k][lane]);
         }
-    const double root_area = half_area(lo, hi);
+    const double root_area = bound_half_area(root_bound);
     if (!(root_area > 0) || !std::isfinite(root_area)) return false;
     // Objects, then spheres, asked in large leaves per ray through the root's box: the
     // first from the nodes alone, so that a hierarchy far below the mark (a million spheres
@@ -127,9 +122,7 @@ bool ObjectIndex::cull_pays() const {
                          ++i)
                         asked += entries_[i].sphere ? 1 : 0;
                 }
-                const float leaf_lo[3] = {node.box[0][lane], node.box[1][lane], node.box[2][lane]};
-                const float leaf_hi[3] = {node.box[3][lane], node.box[4][lane], node.box[5][lane]};
-                sum += half_area(leaf_lo, leaf_hi) / root_area * asked;
+                sum += bound_half_area(node.bound(lane).data()) / root_area * asked;
             }
         return sum;
     };
