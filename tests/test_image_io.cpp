@@ -1,8 +1,11 @@
 // The image library: checksums, deflate and inflate, PNG, PPM and PFM encoding, the value
 // mapping, reading PNG files another encoder wrote.
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <span>
+#include <stdexcept>
 #include <string_view>
 
 #include "check.h"
@@ -511,6 +514,107 @@ TEST(an_image_in_pieces_is_the_whole_file) {
             CHECK(joined == rt::encode_image(r, e));
             CHECK_EQ(pieces, format == rt::ImageFormat::ppm ? (bits == 8 ? 4 : 7) : 1);
         }
+}
+
+namespace {
+
+// Values that every quantizer must agree on: halves and what lies beside them, the ends of
+// the range and beyond, NaN and infinities, and noise.
+std::vector<double> awkward_values(std::size_t count, std::uint64_t seed) {
+    Random random(seed);
+    const double specials[] = {0.5 / 255, 127.5 / 255, 0.5 / 65535, 0,        1,         -0.0,
+                               -1e-300,   1 + 1e-16,   NAN,         INFINITY, -INFINITY, 1e300};
+    std::vector<double> values;
+    for (std::size_t i = 0; i < count; ++i) {
+        const std::uint64_t pick = random.next() % 4;
+        if (pick == 0) {
+            values.push_back(specials[random.next() % std::size(specials)]);
+        } else if (pick == 1) {
+            // A half of a step of 255 or 65535, or the double beside it.
+            const double max = random.next() % 2 == 0 ? 255 : 65535;
+            const double half =
+                (static_cast<double>(random.next() % static_cast<unsigned>(max)) + 0.5) / max;
+            const int side = static_cast<int>(random.next() % 3) - 1;
+            values.push_back(side == 0 ? half : std::nextafter(half, side * 2.0));
+        } else {
+            values.push_back(1.2 * random.uniform() - 0.1);
+        }
+    }
+    return values;
+}
+
+const rt::Gamma kGammas[] = {{}, {rt::Gamma::Kind::srgb, 1}, {rt::Gamma::Kind::power, 2.2}};
+
+}  // namespace
+
+// The render quantizes each row on its own, starting anywhere in a run of four: every slice
+// gives the samples the whole does there.
+TEST(quantized_values_of_any_slice_are_those_of_the_whole) {
+    const std::vector<double> values = awkward_values(3 * 97, 11);
+    for (const int bits : {8, 16})
+        for (const rt::Gamma& gamma : kGammas) {
+            const std::size_t width = static_cast<std::size_t>(bits / 8);
+            std::vector<std::uint8_t> whole(values.size() * width);
+            rt::quantize_values(values, bits, gamma, whole.data());
+            for (std::size_t begin = 0; begin < 9; ++begin)
+                for (const std::size_t end :
+                     {begin, begin + 1, begin + 5, values.size() - 3, values.size()}) {
+                    std::vector<std::uint8_t> part((end - begin) * width);
+                    rt::quantize_values(std::span(values).subspan(begin, end - begin), bits, gamma,
+                                        part.data());
+                    CHECK(std::equal(part.begin(), part.end(),
+                                     whole.begin() + static_cast<std::ptrdiff_t>(begin * width)));
+                }
+        }
+}
+
+// A render kept as samples is written as the file its raster would have made, in pieces or
+// whole, PPM and PNG, any bits and gamma, metadata and all.
+TEST(samples_are_written_as_the_raster_they_came_from) {
+    const int width = 700, height = 41;  // 86,100 samples: a PPM in several pieces
+    const std::vector<double> values = awkward_values(3u * width * height, 12);
+    const rt::Raster r = raster_of(width, height, values);
+    for (const rt::ImageFormat format : {rt::ImageFormat::ppm, rt::ImageFormat::png})
+        for (const int bits : {8, 16})
+            for (const rt::Gamma& gamma : kGammas) {
+                rt::ImageEncoding e;
+                e.format = format;
+                e.bits = bits;
+                e.gamma = gamma;
+                e.metadata.set("Software", "rt test");
+                const rt::SampleRaster samples = rt::quantize_raster(r, bits, gamma);
+                CHECK(std::equal(samples.bytes().begin(), samples.bytes().end(),
+                                 rt::quantize(r, bits, gamma).bytes.begin()));
+                std::string joined;
+                int pieces = 0;
+                rt::encode_samples_in_pieces(samples, e, [&](std::string_view piece) {
+                    joined += piece;
+                    ++pieces;
+                });
+                CHECK(joined == rt::encode_image(r, e));
+                CHECK(format == rt::ImageFormat::png ? pieces == 1 : pieces > 2);
+            }
+    // Samples of other bits or gamma, or PFM, which stores floats, are refused.
+    const rt::SampleRaster samples = rt::quantize_raster(r, 8, {});
+    const auto refused = [&](const rt::ImageEncoding& e) {
+        try {
+            rt::encode_samples_in_pieces(samples, e, [](std::string_view) {});
+        } catch (const std::invalid_argument&) {
+            return true;
+        }
+        return false;
+    };
+    rt::ImageEncoding e;
+    CHECK(!refused(e));
+    e.bits = 16;
+    CHECK(refused(e));
+    e.bits = 8;
+    e.gamma = kGammas[1];
+    CHECK(refused(e));
+    e.gamma = {};
+    e.format = rt::ImageFormat::pfm;
+    CHECK(refused(e));
+    CHECK(throws_error([] { rt::SampleRaster(2, 2, 12, {}); }));
 }
 
 TEST(a_new_raster_is_black_small_or_large) {

@@ -1,7 +1,8 @@
 // The render's row store (what --checkpoint builds on): a render hands every row it finishes
 // to the store, once per pass; one given rows takes them instead of tracing them, and the
 // raster is bit for bit the one an uninterrupted render makes, whatever rows it had, with
-// adaptive supersampling, regions and any number of threads.
+// adaptive supersampling, regions and any number of threads, and so are its samples.
+#include <algorithm>
 #include <map>
 #include <mutex>
 #include <random>
@@ -112,6 +113,19 @@ TEST(a_render_resumed_from_any_rows_is_the_uninterrupted_one) {
                 CHECK_EQ(progress.rows_done.load(), progress.rows_total.load());
                 render_region(scene, with(1, adaptive), region, &full_stats);
                 if (!resumed.held.empty()) CHECK(stats.total() < full_stats.total());
+                // Kept as samples (rt's PPM and PNG): the same rows restored, the samples of
+                // the uninterrupted raster.
+                MemoryStore resumed_samples;
+                resumed_samples.held = resumed.held;
+                const Gamma srgb{Gamma::Kind::srgb, 1};
+                const SampleRaster samples =
+                    render_region_samples(scene, with(2 + trial, adaptive), region, 16, srgb,
+                                          nullptr, nullptr, &resumed_samples);
+                const SampleImage expected = quantize(whole, 16, srgb);
+                CHECK(std::equal(samples.bytes().begin(), samples.bytes().end(),
+                                 expected.bytes.begin(), expected.bytes.end()));
+                CHECK_EQ(resumed_samples.restored, resumed.restored);
+                CHECK(resumed_samples.handed == resumed.handed);
             }
         }
 }

@@ -6,11 +6,13 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
+#include "rt/large_pages.h"
 #include "rt/raster.h"
 
 namespace rt {
@@ -88,13 +90,41 @@ struct SampleImage {
 // The raster's red, green and blue as `bits`-bit samples: round(max · encode_gamma(clamp(c,
 // 0, 1))), max = 255 or 65535; NaN counts as 0.
 SampleImage quantize(const Raster& raster, int bits, const Gamma& gamma);
-// The same samples written at `out`, which has room for them (3 or 6 bytes a pixel).
-void quantize_into(const Raster& raster, int bits, const Gamma& gamma, std::uint8_t* out);
-// Those of rows [y0, y1) only.
-void quantize_rows(const Raster& raster, int y0, int y1, int bits, const Gamma& gamma,
-                   std::uint8_t* out);
+// Components laid out as a raster's (three per pixel) as the same samples, written at `out`,
+// which has room for them (1 or 2 bytes each): quantize and every writer of samples use it.
+void quantize_values(std::span<const double> values, int bits, const Gamma& gamma,
+                     std::uint8_t* out);
 // What quantize rounds with: std::lround's answer for 0 <= x < 2^32 (halves away from zero).
 unsigned round_to_nearest(double x);
+
+// The samples a PPM or PNG file of an image stores (SampleImage's layout: red, green and blue,
+// rows from the top, each sample big-endian), for a render that keeps only those: 3 or 6
+// bytes a pixel where a Raster takes 24. Its memory is not written before the render's
+// threads write their rows (2 MiB pages where it is large), so a new one costs no time.
+class SampleRaster {
+  public:
+    // Every sample unset until written. `bits` is 8 or 16 (rt::Error otherwise).
+    SampleRaster(int width, int height, int bits, const Gamma& gamma);
+
+    int width() const { return shape_.width; }
+    int height() const { return shape_.height; }
+    int bits() const { return shape_.bits; }
+    const Gamma& gamma() const { return gamma_; }
+    // The size, channels and bits, as the headers need them (its bytes are empty).
+    const SampleImage& shape() const { return shape_; }
+    std::uint8_t* row(int y) {
+        return bytes_.data() + static_cast<std::size_t>(y) * shape_.row_bytes();
+    }
+    std::span<const std::uint8_t> bytes() const { return bytes_; }
+
+  private:
+    SampleImage shape_;
+    Gamma gamma_;
+    std::vector<std::uint8_t, UninitializedAllocator<std::uint8_t>> bytes_;
+};
+
+// A raster's samples as a SampleRaster (what quantize gives, in that form).
+SampleRaster quantize_raster(const Raster& raster, int bits, const Gamma& gamma);
 
 // Everything that decides an image file's bytes apart from the pixels.
 struct ImageEncoding {
@@ -113,6 +143,13 @@ std::string encode_image(const Raster& raster, const ImageEncoding& encoding);
 void encode_image_in_pieces(const Raster& raster, const ImageEncoding& encoding,
                             const std::function<void(std::string_view)>& sink);
 
+// The file encode_image writes for the raster the samples came from, handed to `sink` as
+// encode_image_in_pieces hands it: the PPM's samples straight from `samples`, no copy. The
+// format must be PPM or PNG, and the bits and gamma the samples'
+// (std::invalid_argument otherwise).
+void encode_samples_in_pieces(const SampleRaster& samples, const ImageEncoding& encoding,
+                              const std::function<void(std::string_view)>& sink);
+
 // Binary PPM: P6 for three channels, P5 for one; maxval 255 or 65535.
 std::string encode_ppm(const SampleImage& image, const ImageMetadata& metadata);
 // The header encode_ppm writes before the samples (image.bytes is not read).
@@ -120,6 +157,10 @@ std::string ppm_header(const SampleImage& image, const ImageMetadata& metadata);
 // PNG of any channel count and 8 or 16 bits, each row with the filter that makes its bytes
 // smallest in absolute value (the usual heuristic), compressed by rt's deflate.
 std::string encode_png(const SampleImage& image, const ImageMetadata& metadata);
+// The same for samples held elsewhere: `shape`'s size, channels and bits (its bytes unread),
+// `samples` as its bytes would be.
+std::string encode_png(const SampleImage& shape, const std::uint8_t* samples,
+                       const ImageMetadata& metadata);
 // PFM ("PF", RGB): 32-bit floats as the raster holds them, little-endian (scale -1.0), rows
 // from the bottom as the format has them. PFM has no place for metadata.
 std::string encode_pfm(const Raster& raster);

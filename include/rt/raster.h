@@ -49,6 +49,11 @@ class Raster {
     void set(int x, int y, const Spectrum& s) {
         for (std::size_t i = 0; i < kSpectrumComponents; ++i) values_[index(x, y) + i] = s[i];
     }
+    // Pixels x0, x0 + 1, ... of row y from `values`, laid out as values() (3 per pixel).
+    void set_row(int y, int x0, std::span<const double> values) {
+        std::copy(values.begin(), values.end(),
+                  values_.begin() + static_cast<std::ptrdiff_t>(index(x0, y)));
+    }
 
   private:
     std::size_t index(int x, int y) const {

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cstdint>
 
+#include "rt/image_io.h"
 #include "rt/options.h"
 #include "rt/raster.h"
 #include "rt/scene.h"
@@ -56,6 +57,16 @@ inline PixelRect image_rect(const Viewer& v) { return {0, 0, v.xres, v.yres}; }
 Raster render_region(const Scene& scene, const RenderOptions& options, const PixelRect& region,
                      RenderStats* stats = nullptr, RenderProgress* progress = nullptr,
                      RowStore* rows = nullptr);
+
+// The same pixels as render_region's, kept only as the samples a PPM or PNG file of `bits`
+// bits per sample and `gamma` stores (quantize's, to the bit): 3 or 6 bytes a pixel instead
+// of a raster's 24, quantized row by row as the threads finish them. With adaptive
+// supersampling, whose decisions compare one-ray values, the region is rendered as a raster
+// and then quantized.
+SampleRaster render_region_samples(const Scene& scene, const RenderOptions& options,
+                                   const PixelRect& region, int bits, const Gamma& gamma,
+                                   RenderStats* stats = nullptr, RenderProgress* progress = nullptr,
+                                   RowStore* rows = nullptr);
 
 // The pixels -a's one-ray pass covers for `region` of `image`: the region and a one-pixel
 // margin around it, within the image (adaptive decisions at the region's edges need them).

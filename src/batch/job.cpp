@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -144,15 +145,18 @@ class ClaimedOutputs {
         depfile_.emplace(cl.depfile, inputs_, "the dependency rule");
     }
 
+    // What the image file stores: floats (PFM), or samples, which are all a render for it
+    // needs to keep.
+    bool takes_samples() const { return encoding_.format != ImageFormat::pfm; }
+    const ImageEncoding& encoding() const { return encoding_; }
+
     // Encodes and writes the image, then the rule: a rule for an image that failed would be
     // a lie.
     void write(const Raster& image, StageTimes& times) {
-        const auto start = Clock::now();
-        encode_image_in_pieces(image, encoding_,
-                               [&](std::string_view piece) { image_.append(piece); });
-        image_.commit();
-        times.write = seconds_since(start);
-        if (depfile_) depfile_->write_bytes(rule_);
+        write([&](const auto& sink) { encode_image_in_pieces(image, encoding_, sink); }, times);
+    }
+    void write(const SampleRaster& image, StageTimes& times) {
+        write([&](const auto& sink) { encode_samples_in_pieces(image, encoding_, sink); }, times);
     }
 
     // The scene first (empty for standard input), then its textures and mesh files.
@@ -165,6 +169,16 @@ class ClaimedOutputs {
     }
 
   private:
+    template <typename Encode>
+    void write(const Encode& encode, StageTimes& times) {
+        const auto start = Clock::now();
+        encode(std::function<void(std::string_view)>(
+            [&](std::string_view piece) { image_.append(piece); }));
+        image_.commit();
+        times.write = seconds_since(start);
+        if (depfile_) depfile_->write_bytes(rule_);
+    }
+
     static ImageEncoding encoding_of(const CommandLine& cl, const Viewer& viewer,
                                      const PixelRect& region) {
         ImageEncoding encoding = cl.image;
@@ -225,11 +239,11 @@ CheckpointPlan checkpoint_plan(const CommandLine& cl, const Viewer& viewer, cons
     return plan;
 }
 
-// The render, with a progress display on standard error when it is a terminal or --progress
-// asks for one (never under -q), and through the checkpoint when there is one.
-Raster render_with_progress(const CommandLine& cl, const Scene& scene, const RenderOptions& options,
-                            const PixelRect& region, RunStatistics& statistics,
-                            RenderProgress& progress, RowStore* rows) {
+// The render, `render()`, with a progress display on standard error when it is a terminal
+// or --progress asks for one (never under -q).
+template <typename Render>
+auto render_with_progress(const CommandLine& cl, RunStatistics& statistics,
+                          RenderProgress& progress, const Render& render) {
     std::optional<ProgressDisplay> display;
     if (!cl.quiet && (cl.progress || isatty(STDERR_FILENO) != 0))
         display.emplace(progress,
@@ -237,7 +251,7 @@ Raster render_with_progress(const CommandLine& cl, const Scene& scene, const Ren
                                                    : ProgressDisplay::Style::lines,
                         std::cerr, progress_label(cl));
     const auto start = Clock::now();
-    Raster image = render_region(scene, options, region, &statistics.rays, &progress, rows);
+    auto image = render();
     statistics.times.render = seconds_since(start);
     if (display) display->finish();
     return image;
@@ -301,9 +315,21 @@ int run_job(const CommandLine& cl, int threads) try {
     if (!cl.checkpoint.empty())
         checkpoint.emplace(checkpoint_plan(cl, scene.viewer, region, files, scene_digest),
                            &progress);
-    const Raster image = render_with_progress(cl, scene, options, region, statistics, progress,
-                                              checkpoint ? &*checkpoint : nullptr);
-    outputs.write(image, statistics.times);
+    RowStore* const rows = checkpoint ? &*checkpoint : nullptr;
+    // A PPM or PNG is rendered into its samples alone (3 or 6 bytes a pixel, not 24).
+    if (outputs.takes_samples()) {
+        const ImageEncoding& encoding = outputs.encoding();
+        const SampleRaster image = render_with_progress(cl, statistics, progress, [&] {
+            return render_region_samples(scene, options, region, encoding.bits, encoding.gamma,
+                                         &statistics.rays, &progress, rows);
+        });
+        outputs.write(image, statistics.times);
+    } else {
+        const Raster image = render_with_progress(cl, statistics, progress, [&] {
+            return render_region(scene, options, region, &statistics.rays, &progress, rows);
+        });
+        outputs.write(image, statistics.times);
+    }
     if (checkpoint) {
         checkpoint->remove();
         statistics.checkpoint = true;

@@ -82,7 +82,7 @@ void put_text(std::string& out, const std::string& key, const std::string& value
 
 // Each row with the filter whose output has the smallest sum of absolute values (the bytes
 // read as signed): what libpng does, and a good guess at what deflate packs best.
-std::string filter_rows(const SampleImage& image) {
+std::string filter_rows(const SampleImage& image, const std::uint8_t* samples) {
     const std::size_t bpp = image.bytes_per_pixel();
     const std::size_t row = image.row_bytes();
     std::string out;
@@ -91,7 +91,7 @@ std::string filter_rows(const SampleImage& image) {
     std::array<std::vector<std::uint8_t>, kFilterTypes> trial;
     for (auto& t : trial) t.resize(row);
     for (int y = 0; y < image.height; ++y) {
-        const std::uint8_t* cur = image.bytes.data() + static_cast<std::size_t>(y) * row;
+        const std::uint8_t* cur = samples + static_cast<std::size_t>(y) * row;
         const std::uint8_t* up = y == 0 ? zeros.data() : cur - row;
         std::array<std::uint64_t, kFilterTypes> cost{};
         for (std::size_t i = 0; i < row; ++i) {
@@ -115,6 +115,11 @@ std::string filter_rows(const SampleImage& image) {
 }  // namespace
 
 std::string encode_png(const SampleImage& image, const ImageMetadata& metadata) {
+    return encode_png(image, image.bytes.data(), metadata);
+}
+
+std::string encode_png(const SampleImage& image, const std::uint8_t* samples,
+                       const ImageMetadata& metadata) {
     static constexpr std::array<int, 5> kColourType = {-1, kGrey, kGreyAlpha, kRgb, kRgbAlpha};
     if (image.channels < 1 || image.channels > 4 || (image.bits != 8 && image.bits != 16))
         throw Error("PNG cannot store this image");
@@ -127,7 +132,7 @@ std::string encode_png(const SampleImage& image, const ImageMetadata& metadata) 
     header.append(3, '\0');  // deflate, adaptive filtering, no interlacing
     put_chunk(out, "IHDR", header);
     for (const auto& [key, value] : metadata.entries) put_text(out, key, value);
-    const std::string data = zlib_compress(filter_rows(image));
+    const std::string data = zlib_compress(filter_rows(image, samples));
     for (std::size_t at = 0; at < data.size(); at += kIdatSize)
         put_chunk(out, "IDAT", std::string_view(data).substr(at, kIdatSize));
     put_chunk(out, "IEND", "");

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <functional>
+#include <span>
 #include <stdexcept>
 #include <thread>
 #include <utility>
@@ -24,7 +25,10 @@ class Window {
   public:
     explicit Window(const PixelRect& rect) : rect_(rect), raster_(rect.width(), rect.height()) {}
     Spectrum at(int x, int y) const { return raster_.at(x - rect_.x0, y - rect_.y0); }
-    void set(int x, int y, const Spectrum& s) { raster_.set(x - rect_.x0, y - rect_.y0, s); }
+    // Pixels x0 ... of row y, three values each.
+    void put_row(int y, int x0, std::span<const double> values) {
+        raster_.set_row(y - rect_.y0, x0 - rect_.x0, values);
+    }
     // The pixels of `part` (within this window) as a raster of their own; the window's own
     // raster, moved, when the part is all of it (a copy of a 1024 x 1024 raster, 24 MiB in
     // fresh pages, was 4 % of the SPD teapot's whole run).
@@ -39,6 +43,25 @@ class Window {
   private:
     PixelRect rect_;
     Raster raster_;
+};
+
+// The same for a render that keeps only the samples its file will hold: each row quantized
+// as it is put, by the function the writers use, so the samples are those of the raster.
+class SampleWindow {
+  public:
+    SampleWindow(const PixelRect& rect, int bits, const Gamma& gamma)
+        : rect_(rect), samples_(rect.width(), rect.height(), bits, gamma) {}
+    void put_row(int y, int x0, std::span<const double> values) {
+        const std::size_t bytes_per_pixel = samples_.shape().bytes_per_pixel();
+        quantize_values(
+            values, samples_.bits(), samples_.gamma(),
+            samples_.row(y - rect_.y0) + static_cast<std::size_t>(x0 - rect_.x0) * bytes_per_pixel);
+    }
+    SampleRaster take() && { return std::move(samples_); }
+
+  private:
+    PixelRect rect_;
+    SampleRaster samples_;
 };
 
 // Calls work(tracer, y) for every row y of `rect`, rows shared among the tracers' threads
@@ -66,42 +89,32 @@ void for_each_row(std::vector<Tracer>& tracers, const PixelRect& rect, const Wor
 }  // every worker joins here
 
 // One row of one pass, through the store when there is one: restored if it holds the row,
-// else computed by `trace(x)` for every column and handed to it.
-template <typename Trace>
-void row_through_store(RowStore* store, int pass, int y, int x0, int x1, Window& raster,
-                       std::vector<double>& scratch, const Trace& trace) {
-    if (store == nullptr) {
-        for (int x = x0; x < x1; ++x) raster.set(x, y, trace(x));
-        return;
-    }
-    scratch.resize(static_cast<std::size_t>(x1 - x0) * kSpectrumComponents);
-    const auto at = [&](int x) {
-        return scratch.data() + static_cast<std::size_t>(x - x0) * kSpectrumComponents;
-    };
-    if (store->restore(pass, y, x0, x1, scratch.data())) {
+// else computed by `trace(x)` for every column and handed to it. The row is gathered in a
+// buffer of the thread's own and put in `out` whole.
+template <typename Pixels, typename Trace>
+void row_through_store(RowStore* store, int pass, int y, int x0, int x1, Pixels& out,
+                       const Trace& trace) {
+    thread_local std::vector<double> row;
+    row.resize(static_cast<std::size_t>(x1 - x0) * kSpectrumComponents);
+    if (store == nullptr || !store->restore(pass, y, x0, x1, row.data())) {
+        double* at = row.data();
         for (int x = x0; x < x1; ++x) {
-            Spectrum s;
-            for (std::size_t i = 0; i < kSpectrumComponents; ++i) s[i] = at(x)[i];
-            raster.set(x, y, s);
+            const Spectrum s = trace(x);
+            for (std::size_t i = 0; i < kSpectrumComponents; ++i) *at++ = s[i];
         }
-        return;
+        if (store != nullptr) store->finished(pass, y, x0, x1, row.data());
     }
-    for (int x = x0; x < x1; ++x) {
-        const Spectrum s = trace(x);
-        raster.set(x, y, s);
-        for (std::size_t i = 0; i < kSpectrumComponents; ++i) at(x)[i] = s[i];
-    }
-    store->finished(pass, y, x0, x1, scratch.data());
+    out.put_row(y, x0, row);
 }
 
 // Row y's one ray per pixel from x0 to x1 - 1, through the store as row_through_store: the
 // row's rays are made before any is traced (Tracer::row_rays), so that their square roots
 // and divisions overlap.
-void one_ray_row(Tracer& tracer, RowStore* store, int pass, int y, int x0, int x1, Window& raster) {
-    thread_local std::vector<double> scratch;
+template <typename Pixels>
+void one_ray_row(Tracer& tracer, RowStore* store, int pass, int y, int x0, int x1, Pixels& out) {
     thread_local std::vector<Ray> rays;
     tracer.row_rays(y, x0, x1, rays);
-    row_through_store(store, pass, y, x0, x1, raster, scratch, [&](int x) {
+    row_through_store(store, pass, y, x0, x1, out, [&](int x) {
         return tracer.shade_primary(rays[static_cast<std::size_t>(x - x0)]);
     });
 }
@@ -157,13 +170,47 @@ void render_adaptive(std::vector<Tracer>& tracers, const PixelRect& rect, const 
     for_each_row(
         tracers, rect,
         [&](Tracer& tracer, int y) {
-            thread_local std::vector<double> scratch;
-            row_through_store(store, 1, y, rect.x0, rect.x1, raster, scratch, [&](int x) {
+            // The row is put once it is whole, so each pixel's own one-ray value is read here.
+            row_through_store(store, 1, y, rect.x0, rect.x1, raster, [&](int x) {
                 const Spectrum centre = raster.at(x, y);
                 return flag(x, y) == 0 ? centre : tracer.pixel(x, y, &centre);
             });
         },
         progress);
+}
+
+// Every pixel of `region` without adaptive supersampling, into `out`.
+template <typename Pixels>
+void render_rows(std::vector<Tracer>& tracers, const RenderOptions& options,
+                 const PixelRect& region, Pixels& out, RenderProgress* progress, RowStore* rows) {
+    if (progress != nullptr)
+        progress->rows_total.store(static_cast<std::uint64_t>(region.height()));
+    for_each_row(
+        tracers, region,
+        [&](Tracer& tracer, int y) {
+            // One ray a pixel is what pixel() traces then.
+            if (options.samples <= 1)
+                return one_ray_row(tracer, rows, 1, y, region.x0, region.x1, out);
+            row_through_store(rows, 1, y, region.x0, region.x1, out,
+                              [&](int x) { return tracer.pixel(x, y); });
+        },
+        progress);
+}
+
+// Checks the region, makes one tracer per thread (each counting its own rays), runs
+// `render(tracers)` and adds their counts into `stats` once all have joined.
+template <typename Render>
+auto with_tracers(const Scene& scene, const RenderOptions& options, const PixelRect& region,
+                  RenderStats* stats, const Render& render) {
+    const PixelRect image = image_rect(scene.viewer);
+    if (region.empty() || !image.contains(region))
+        throw std::invalid_argument("render_region: the region is empty or outside the image");
+    const int threads = render_threads(options, region);
+    std::vector<Tracer> tracers(static_cast<std::size_t>(threads), Tracer(scene, options));
+    auto result = render(tracers);
+    if (stats != nullptr)
+        for (const Tracer& tracer : tracers) *stats += tracer.stats();
+    return result;
 }
 
 }  // namespace
@@ -184,38 +231,32 @@ int render_threads(const RenderOptions& options, const PixelRect& region) {
 
 Raster render_region(const Scene& scene, const RenderOptions& options, const PixelRect& region,
                      RenderStats* stats, RenderProgress* progress, RowStore* rows) {
-    const PixelRect image = image_rect(scene.viewer);
-    if (region.empty() || !image.contains(region))
-        throw std::invalid_argument("render_region: the region is empty or outside the image");
-    const int threads = render_threads(options, region);
-    // One tracer per thread, each counting its own rays; merged once all have joined.
-    std::vector<Tracer> tracers(static_cast<std::size_t>(threads), Tracer(scene, options));
-    // Adaptive decisions need the one-ray values of a margin around the region.
-    const PixelRect canvas = options.adaptive_threshold ? one_ray_rect(region, image) : region;
-    Window raster(canvas);
-    if (options.adaptive_threshold) {
-        render_adaptive(tracers, region, image, *options.adaptive_threshold, raster, progress,
-                        rows);
-    } else {
-        if (progress != nullptr)
-            progress->rows_total.store(static_cast<std::uint64_t>(region.height()));
-        for_each_row(
-            tracers, region,
-            [&](Tracer& tracer, int y) {
-                // One ray a pixel is what pixel() traces then.
-                if (options.samples <= 1) {
-                    one_ray_row(tracer, rows, 1, y, region.x0, region.x1, raster);
-                    return;
-                }
-                thread_local std::vector<double> scratch;
-                row_through_store(rows, 1, y, region.x0, region.x1, raster, scratch,
-                                  [&](int x) { return tracer.pixel(x, y); });
-            },
-            progress);
-    }
-    if (stats != nullptr)
-        for (const Tracer& tracer : tracers) *stats += tracer.stats();
-    return std::move(raster).crop(region);
+    return with_tracers(scene, options, region, stats, [&](std::vector<Tracer>& tracers) {
+        if (!options.adaptive_threshold) {
+            Window raster(region);
+            render_rows(tracers, options, region, raster, progress, rows);
+            return std::move(raster).crop(region);
+        }
+        // Adaptive decisions need the one-ray values of a margin around the region.
+        Window raster(one_ray_rect(region, image_rect(scene.viewer)));
+        render_adaptive(tracers, region, image_rect(scene.viewer), *options.adaptive_threshold,
+                        raster, progress, rows);
+        return std::move(raster).crop(region);
+    });
+}
+
+SampleRaster render_region_samples(const Scene& scene, const RenderOptions& options,
+                                   const PixelRect& region, int bits, const Gamma& gamma,
+                                   RenderStats* stats, RenderProgress* progress, RowStore* rows) {
+    // Adaptive decisions compare neighbours' one-ray values, which samples do not keep.
+    if (options.adaptive_threshold)
+        return quantize_raster(render_region(scene, options, region, stats, progress, rows), bits,
+                               gamma);
+    return with_tracers(scene, options, region, stats, [&](std::vector<Tracer>& tracers) {
+        SampleWindow samples(region, bits, gamma);
+        render_rows(tracers, options, region, samples, progress, rows);
+        return std::move(samples).take();
+    });
 }
 
 }  // namespace rt
