@@ -187,9 +187,11 @@ void quantize_linear(std::span<const double> values, std::uint8_t* out) {
         c = c < one ? c : one;
         const Doubles x = max * c;
         const Ints whole = __builtin_convertvector(x, Ints);  // truncated, as x >= 0
+        // x minus its whole part is exact, and so is twice that, which is below 2: its whole
+        // part is 1 exactly where the rest is a half or more. (A comparison's mask, converted
+        // to 32-bit lanes, took the compiler's scalar code.)
         const Doubles rest = x - __builtin_convertvector(whole, Doubles);
-        // A comparison is -1 where it holds.
-        const Ints v = whole - __builtin_convertvector(rest >= 0.5, Ints);
+        const Ints v = whole + __builtin_convertvector(rest + rest, Ints);
         for (std::size_t k = 0; k < 4; ++k)
             store_sample<bits>(out, i + k, static_cast<std::uint32_t>(v[k]));
     }
