@@ -153,10 +153,12 @@ class ClaimedOutputs {
     // Encodes and writes the image, then the rule: a rule for an image that failed would be
     // a lie.
     void write(const Raster& image, StageTimes& times) {
-        write([&](const auto& sink) { encode_image_in_pieces(image, encoding_, sink); }, times);
+        write_encoded([&](const auto& sink) { encode_image_in_pieces(image, encoding_, sink); },
+                      times);
     }
     void write(const SampleRaster& image, StageTimes& times) {
-        write([&](const auto& sink) { encode_samples_in_pieces(image, encoding_, sink); }, times);
+        write_encoded([&](const auto& sink) { encode_samples_in_pieces(image, encoding_, sink); },
+                      times);
     }
 
     // The scene first (empty for standard input), then its textures and mesh files.
@@ -169,8 +171,9 @@ class ClaimedOutputs {
     }
 
   private:
+    // `encode(sink)` hands the file's bytes to the sink in pieces.
     template <typename Encode>
-    void write(const Encode& encode, StageTimes& times) {
+    void write_encoded(const Encode& encode, StageTimes& times) {
         const auto start = Clock::now();
         encode(std::function<void(std::string_view)>(
             [&](std::string_view piece) { image_.append(piece); }));
