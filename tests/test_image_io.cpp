@@ -7,6 +7,7 @@
 #include <span>
 #include <stdexcept>
 #include <string_view>
+#include <utility>
 
 #include "check.h"
 #include "cli_util.h"
@@ -48,6 +49,18 @@ bool throws_error(const std::function<void()>& f) {
         return true;
     }
     return false;
+}
+
+// The pieces `encode(sink)` hands its sink, joined, and how many there were.
+template <typename Encode>
+std::pair<std::string, int> joined_pieces(const Encode& encode) {
+    std::string joined;
+    int pieces = 0;
+    encode([&](std::string_view piece) {
+        joined += piece;
+        ++pieces;
+    });
+    return {joined, pieces};
 }
 
 rt::Raster raster_of(int width, int height, const std::vector<double>& values) {
@@ -505,12 +518,8 @@ TEST(an_image_in_pieces_is_the_whole_file) {
             e.format = format;
             e.bits = bits;
             e.metadata.set("Software", "rt test");
-            std::string joined;
-            int pieces = 0;
-            rt::encode_image_in_pieces(r, e, [&](std::string_view piece) {
-                joined += piece;
-                ++pieces;
-            });
+            const auto [joined, pieces] =
+                joined_pieces([&](const auto& sink) { rt::encode_image_in_pieces(r, e, sink); });
             CHECK(joined == rt::encode_image(r, e));
             CHECK_EQ(pieces, format == rt::ImageFormat::ppm ? (bits == 8 ? 4 : 7) : 1);
         }
@@ -585,12 +594,8 @@ TEST(samples_are_written_as_the_raster_they_came_from) {
                 const rt::SampleRaster samples = rt::quantize_raster(r, bits, gamma);
                 CHECK(std::equal(samples.bytes().begin(), samples.bytes().end(),
                                  rt::quantize(r, bits, gamma).bytes.begin()));
-                std::string joined;
-                int pieces = 0;
-                rt::encode_samples_in_pieces(samples, e, [&](std::string_view piece) {
-                    joined += piece;
-                    ++pieces;
-                });
+                const auto [joined, pieces] = joined_pieces(
+                    [&](const auto& sink) { rt::encode_samples_in_pieces(samples, e, sink); });
                 CHECK(joined == rt::encode_image(r, e));
                 CHECK(format == rt::ImageFormat::png ? pieces == 1 : pieces > 2);
             }
