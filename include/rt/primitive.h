@@ -74,6 +74,9 @@ struct SphereParameters {
     double radius_squared;
 };
 using SphereFn = SphereParameters(const void* shape);
+// Boxes that together hold every part of a primitive with a hierarchy of its own, at most
+// `at_most` of them unless its root alone has more (accel/bvh.h, Bvh::outline).
+using OutlineFn = std::vector<Bounds>(const void* shape, std::size_t at_most);
 
 // What a primitive does. Each primitive's source file defines one, at its end, from
 // functions private to that file; the table in table.cpp gives it an ID and a name.
@@ -115,11 +118,12 @@ struct PrimitiveFunctions {
     // hierarchy then asks a shadow ray's last blocker only behind its box, where a cheap
     // primitive is asked first. nullptr: false.
     PropertyFn* many_parts = nullptr;
-    // True where the primitive's test starts with a hierarchy of its own over its parts,
-    // whose boxes hold all of them: a mesh's triangles (14, 15, 16). A ray outside its box
-    // then costs it about one box test, so a scene whose one bounded object this is asks it
-    // directly rather than testing its box first. nullptr: false.
-    PropertyFn* own_hierarchy = nullptr;
+    // Where the primitive's test starts with a hierarchy of its own over its parts, whose
+    // boxes hold all of them (a mesh's triangles: 14, 15, 16): boxes of a cut across it. A
+    // ray outside its box then costs it about one box test, so a scene whose one bounded
+    // object this is asks it directly rather than testing its box first, and the boxes
+    // tell which pixels' rays may meet it (render/primary_mask.h). nullptr: no hierarchy.
+    OutlineFn* outline = nullptr;
     // For a primitive that is a sphere and nothing else (1): its centre and squared radius,
     // which the object hierarchy copies into its leaves to test it inline, without a call
     // (primitives/sphere_test.h, the same code as its intersect). nullptr: not a sphere.
@@ -187,9 +191,7 @@ struct Shape {
     bool many_parts() const {
         return functions->many_parts != nullptr && functions->many_parts(data.get());
     }
-    bool own_hierarchy() const {
-        return functions->own_hierarchy != nullptr && functions->own_hierarchy(data.get());
-    }
+    bool own_hierarchy() const { return functions->outline != nullptr; }
 };
 
 // Crossings of one boundary are searched for again from just past the last one: by this much

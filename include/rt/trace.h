@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -23,6 +24,8 @@ struct SceneHit {
     const Object* object;
     Hit hit;
 };
+
+class PrimaryMask;
 
 // What answers a tracer's two ray queries when RenderOptions::queries is set, in place of the
 // scene's hierarchy or the linear scan. Every render thread calls it at once: it must be
@@ -78,13 +81,17 @@ class alignas(64) Tracer {
                    const Spectrum& absorption = Spectrum(0.0));
     // A primary ray's value in the current render mode.
     Spectrum shade_primary(const Ray& ray);
+    // The same for a ray from the eye through pixel (x, y) of the image: the original's, or
+    // one of its grid's (within half a pixel of it). Where no bounded object can lie along
+    // such rays (PrimaryMask), the hierarchy is not walked; the value is the same.
+    Spectrum shade_pixel_ray(const Ray& ray, int x, int y);
     // The value of pixel (x, y): the mean of options.samples^2 primary rays on a grid centred
     // on the original's ray through (x, y). traced_centre, when given, is that ray's value,
     // already traced: an odd grid, whose middle sample is that ray, uses it instead of
     // tracing the ray again (the sum is the same, bit for bit).
     Spectrum pixel(int x, int y, const Spectrum* traced_centre = nullptr);
     // The value of the original's one ray through pixel (x, y), whatever options.samples is.
-    Spectrum one_ray(int x, int y) { return shade_primary(primary_ray(x, y)); }
+    Spectrum one_ray(int x, int y) { return shade_pixel_ray(primary_ray(x, y), x, y); }
     // The original's one ray through pixel (x, y), and those of columns x0 to x1 - 1 of row
     // y into `rays`, made one after another before any is traced: their square roots and
     // divisions then overlap, where each would otherwise wait ahead of its trace.
@@ -94,13 +101,20 @@ class alignas(64) Tracer {
         for (int x = x0; x < x1; ++x) rays[static_cast<std::size_t>(x - x0)] = primary_ray(x, y);
     }
 
-    std::optional<SceneHit> closest_hit(const Ray& ray);
+    // The nearest hit; with `bounded` false, among the unbounded objects only (for a ray
+    // the primary mask says crosses no bounded object's box).
+    std::optional<SceneHit> closest_hit(const Ray& ray, bool bounded = true);
     // True when any object lies along the ray closer than `distance`.
     bool blocked(const Ray& ray, double distance);
 
     const RenderStats& stats() const { return stats_; }
 
   private:
+    // shade_primary, the hierarchy asked or not.
+    Spectrum primary(const Ray& ray, bool bounded);
+    // What a ray brings back from its nearest hit (trace's arguments).
+    Spectrum shade(const Ray& ray, const SceneHit& found, int depth, double weight, double ior,
+                   const Spectrum& absorption);
     bool blocked(const Ray& ray, double distance, LastBlocker* last);
     // facing_normal: the geometric normal turned to the ray; shading: the shading normal, the
     // same side (the same vector but for a smooth mesh).
@@ -120,6 +134,9 @@ class alignas(64) Tracer {
     RenderStats stats_;
     Spectrum escaped_;   // what a traced ray that hits nothing brings back
     Vec3 plane_centre_;  // the viewer's, which every primary ray shares
+    // Which pixels' primary rays may meet a bounded object; shared by the copies a render
+    // makes for its threads (read-only). Empty without the hierarchy.
+    std::shared_ptr<const PrimaryMask> primary_mask_;
     // Per light, the object that last blocked a shadow ray toward it: lights() of them,
     // from kBlockerPadding on.
     static constexpr std::size_t kBlockerPadding = 64 / sizeof(LastBlocker);

@@ -674,6 +674,38 @@ std::uint32_t Bvh::collapse_into(std::uint32_t binary, std::uint32_t index) {
     return next;
 }
 
+std::vector<Bounds> Bvh::outline(std::size_t at_most) const {
+    std::vector<Bounds> boxes;
+    if (wide_.empty()) return boxes;
+    const auto box_of = [](const WideNode& node, int lane) {
+        const std::array<float, 6> b = node.bound(lane);
+        return Bounds{{b[0], b[1], b[2]}, {b[3], b[4], b[5]}};
+    };
+    // Level by level: the leaves met so far, and the wide nodes whose children are the rest.
+    std::vector<std::uint32_t> level{0}, next;
+    for (;;) {
+        std::size_t deeper = boxes.size();  // the cut's size one level down
+        for (const std::uint32_t n : level)
+            for (int i = 0; i < wide_[n].size; ++i)
+                deeper += wide_[n].is_leaf(i) ? 1 : wide_[wide_[n].child[i]].size;
+        std::size_t here = boxes.size();
+        for (const std::uint32_t n : level) here += wide_[n].size;
+        if (deeper == here || deeper > at_most) break;
+        next.clear();
+        for (const std::uint32_t n : level)
+            for (int i = 0; i < wide_[n].size; ++i) {
+                if (wide_[n].is_leaf(i))
+                    boxes.push_back(box_of(wide_[n], i));
+                else
+                    next.push_back(wide_[n].child[i]);
+            }
+        level.swap(next);
+    }
+    for (const std::uint32_t n : level)
+        for (int i = 0; i < wide_[n].size; ++i) boxes.push_back(box_of(wide_[n], i));
+    return boxes;
+}
+
 void Bvh::collapse(int threads) {
     if (nodes_.empty()) return;
     if (nodes_[0].is_leaf()) {

@@ -297,6 +297,11 @@ class Bvh {
     std::span<const BvhNode> nodes() const { return nodes_; }
     std::span<const WideNode> wide_nodes() const { return wide_; }
     std::span<const std::uint32_t> order() const { return order_; }
+    // Boxes that together hold every primitive: a cut across the wide tree, as deep as it
+    // goes while there are at most `at_most` of them (at least the root's children; none
+    // for an empty tree). The boxes are the nodes' own, rounded outward and padded, so a
+    // ray the walk would take to a primitive crosses one of them.
+    std::vector<Bounds> outline(std::size_t at_most) const;
     // Frees the binary tree, which traversal does not use (only tests inspect it).
     void drop_binary_nodes() { nodes_ = {}; }
     // Gives up the leaf order, for an owner that stores its primitives in that order itself.

@@ -86,6 +86,7 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
     });
     entries_.insert(entries_.end(), unbounded.begin(), unbounded.end());
     lone_hierarchy_ = bounded_count_ == 1 && objects[bounded[0]].shape.own_hierarchy();
+    if (lone_hierarchy_) lone_outline_ = objects[bounded[0]].shape.functions->outline;
     if (spheres > 0 && cull_pays()) {
         cull_ = SphereCull(bounded_count_);
         for (std::size_t i = 0; i < bounded_count_; ++i)
@@ -165,8 +166,8 @@ ObjectIndex::Entry ObjectIndex::entry(const Object& object, std::uint32_t index)
 }
 
 template <bool Culled>
-bool ObjectIndex::closest_in(const Ray& ray, Interval range, Found& found,
-                             std::uint64_t* tests) const {
+bool ObjectIndex::closest_in(const Ray& ray, Interval range, Found& found, std::uint64_t* tests,
+                             bool bounded) const {
     double best = range.t_max;
     std::uint32_t best_object = kNone;
     std::uint64_t uncounted = 0;
@@ -191,6 +192,7 @@ bool ObjectIndex::closest_in(const Ray& ray, Interval range, Found& found,
     };
     // The unbounded objects first: a floor under everything prunes much of the tree.
     for (auto i = static_cast<std::uint32_t>(bounded_count_); i < entries_.size(); ++i) test(i);
+    if (!bounded) return best_object != kNone;
     if (lone_hierarchy_) {
         test(0);
     } else if constexpr (Culled) {
@@ -275,8 +277,10 @@ bool ObjectIndex::any_in(const Ray& ray, Interval range, Blocker* last,
     }
 }
 
-template bool ObjectIndex::closest_in<false>(const Ray&, Interval, Found&, std::uint64_t*) const;
-template bool ObjectIndex::closest_in<true>(const Ray&, Interval, Found&, std::uint64_t*) const;
+template bool ObjectIndex::closest_in<false>(const Ray&, Interval, Found&, std::uint64_t*,
+                                             bool) const;
+template bool ObjectIndex::closest_in<true>(const Ray&, Interval, Found&, std::uint64_t*,
+                                            bool) const;
 template bool ObjectIndex::any_in<false>(const Ray&, Interval, Blocker*, std::uint64_t*) const;
 template bool ObjectIndex::any_in<true>(const Ray&, Interval, Blocker*, std::uint64_t*) const;
 

@@ -45,6 +45,19 @@ class ObjectIndex {
         return culls_spheres() ? closest_in<true>(ray, range, found, tests)
                                : closest_in<false>(ray, range, found, tests);
     }
+    // The same for a ray that crosses none of outline()'s boxes, so that no bounded object
+    // can be hit: only the unbounded ones are asked.
+    bool closest_unbounded(const Ray& ray, Interval range, Found& found,
+                           std::uint64_t* tests = nullptr) const {
+        return closest_in<false>(ray, range, found, tests, false);
+    }
+    // Boxes that together hold every bounded object (Bvh::outline), at most `at_most` of
+    // them (but at least the root's children); none where there is no bounded object.
+    // A lone object with a hierarchy of its own gives its own (Shape::own_hierarchy).
+    std::vector<Bounds> outline(std::size_t at_most) const {
+        return lone_hierarchy_ ? lone_outline_(entries_[0].test.call.data, at_most)
+                               : bvh_.outline(at_most);
+    }
     // Whether any object is hit in range. With `last`, its object is tried first, and it
     // is set to the blocker found.
     bool any(const Ray& ray, Interval range, Blocker* last = nullptr,
@@ -99,7 +112,8 @@ class ObjectIndex {
     // spheres).
     bool cull_pays() const;
     template <bool Culled>
-    bool closest_in(const Ray& ray, Interval range, Found& found, std::uint64_t* tests) const;
+    bool closest_in(const Ray& ray, Interval range, Found& found, std::uint64_t* tests,
+                    bool bounded = true) const;
     template <bool Culled>
     bool any_in(const Ray& ray, Interval range, Blocker* last, std::uint64_t* tests) const;
     // Whether entry i is hit in range (hit as intersect leaves it).
@@ -117,6 +131,7 @@ class ObjectIndex {
     // outside its box about as fast as this one's would, and the walk here cost the SPD's
     // nurbtst 9 % of its instructions (docs/performance.md, "A lone mesh asked directly").
     bool lone_hierarchy_ = false;
+    OutlineFn* lone_outline_ = nullptr;  // that object's outline column
     // Where cull_pays(): the spheres, culled eight at a time before their exact tests (in
     // scenes of spheres that overlap heavily, which the hierarchy cannot part, the render
     // took 0.73-0.94 of the time, the more overlap the less). Empty elsewhere.

@@ -66,6 +66,6 @@ extern const PrimitiveFunctions functions{.read = read,
                                           .bounds = bounds,
                                           .intersect_any = intersect_any,
                                           .many_parts = mesh_core::always_true,
-                                          .own_hierarchy = mesh_core::always_true};
+                                          .outline = mesh_core::core_outline};
 
 }  // namespace rt::mesh

@@ -184,6 +184,10 @@ Vec3 shading_normal(const void* shape, const Vec3& point, const Hit& hit) {
 
 Bounds bounds(const void* shape) { return mesh_of(shape).core.box; }
 
+std::vector<Bounds> outline(const void* shape, std::size_t at_most) {
+    return mesh_of(shape).core.bvh.outline(at_most);
+}
+
 }  // namespace shaded
 
 }  // namespace rt::mesh_core

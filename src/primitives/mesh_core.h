@@ -147,11 +147,16 @@ bool intersect_any(const void* shape, const Ray& ray, Interval range, Hit& hit);
 Vec3 normal(const void* shape, const Vec3& point, const Hit& hit);
 Vec3 shading_normal(const void* shape, const Vec3& point, const Hit& hit);
 Bounds bounds(const void* shape);
+std::vector<Bounds> outline(const void* shape, std::size_t at_most);
 }  // namespace shaded
 
-// The many_parts and own_hierarchy columns of every mesh, true for each: a test searches its
-// triangles, through the mesh's own hierarchy.
+// The many_parts column of every mesh, true for each: a test searches its triangles, through
+// the mesh's own hierarchy.
 inline bool always_true(const void*) { return true; }
+// The outline column of the mesh (14), whose shape is a Core: its hierarchy's.
+inline std::vector<Bounds> core_outline(const void* shape, std::size_t at_most) {
+    return static_cast<const Core*>(shape)->bvh.outline(at_most);
+}
 
 // Out of line: the part of build that does not depend on where the indices come from.
 void finish(Core& core, Triangles& triangles, int threads);

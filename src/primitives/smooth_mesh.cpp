@@ -61,6 +61,6 @@ extern const PrimitiveFunctions functions{.read = read,
                                           .intersect_any = mesh_core::shaded::intersect_any,
                                           .shading_normal = mesh_core::shaded::shading_normal,
                                           .many_parts = mesh_core::always_true,
-                                          .own_hierarchy = mesh_core::always_true};
+                                          .outline = mesh_core::shaded::outline};
 
 }  // namespace rt::smooth_mesh

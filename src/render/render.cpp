@@ -115,7 +115,7 @@ void one_ray_row(Tracer& tracer, RowStore* store, int pass, int y, int x0, int x
     thread_local std::vector<Ray> rays;
     tracer.row_rays(y, x0, x1, rays);
     row_through_store(store, pass, y, x0, x1, out, [&](int x) {
-        return tracer.shade_primary(rays[static_cast<std::size_t>(x - x0)]);
+        return tracer.shade_pixel_ray(rays[static_cast<std::size_t>(x - x0)], x, y);
     });
 }
 
