@@ -1,6 +1,7 @@
 // Where points land among the pixels of an image seen from an eye, with a bound on the
-// rounding: what the primary mask (primary_mask.h) and the light buffer (light_buffer.h)
-// project boxes with.
+// rounding: the geometry the primary mask (primary_mask.h) projects boxes with, apart from
+// its tiles. (A light buffer for shadow rays projected with it too, and was not kept:
+// docs/performance.md.)
 #pragma once
 
 #include <algorithm>
