@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <new>
 #include <span>
 #include <string>
@@ -244,7 +245,17 @@ ShapeData read(SceneReader& reader) {
 bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
     const auto& p = *static_cast<const Polygon*>(shape);
     const auto t = p.plane.distance(ray, range);
-    if (!t || !even_odd_inside(p, project(ray.at(*t), p.u_axis, p.v_axis))) return false;
+    if (!t) return false;
+    // The hit point's two components the outline is in, by an indexed load rather than
+    // through ray.at() and Vec3's operator[] (whose selects cost more than the rest): the
+    // same products and sums for those two, so the same point.
+    static_assert(sizeof(Vec3) == 3 * sizeof(double) && std::is_trivially_copyable_v<Vec3>);
+    double origin[3], direction[3];
+    std::memcpy(origin, &ray.origin, sizeof origin);
+    std::memcpy(direction, &ray.direction, sizeof direction);
+    const Point2 at{origin[p.u_axis] + direction[p.u_axis] * *t,
+                    origin[p.v_axis] + direction[p.v_axis] * *t};
+    if (!even_odd_inside(p, at)) return false;
     hit = {*t, 0};
     return true;
 }
