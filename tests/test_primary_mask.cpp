@@ -6,6 +6,7 @@
 // It must also spare what it should (a small box ahead leaves the rest of the picture), and
 // the renders it speeds up must be the linear scan's to the bit.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -132,6 +133,26 @@ TEST(no_ray_of_an_unmarked_pixel_comes_near_a_box) {
                             }
                 }
             CHECK_EQ(unmarked, mask.pixels_spared());
+            // A mask of part of the image (a region's): as sound within it, every pixel
+            // outside it marked.
+            const int x0 = static_cast<int>(random.next() % static_cast<std::uint64_t>(v.xres));
+            const int y0 = static_cast<int>(random.next() % static_cast<std::uint64_t>(v.yres));
+            const PixelRect area{
+                x0, y0,
+                x0 + 1 + static_cast<int>(random.next() % static_cast<std::uint64_t>(v.xres - x0)),
+                y0 + 1 + static_cast<int>(random.next() % static_cast<std::uint64_t>(v.yres - y0))};
+            const PrimaryMask part(v, boxes, area);
+            std::size_t unmarked_in_area = 0;
+            for (int y = 0; y < v.yres; ++y)
+                for (int x = 0; x < v.xres; ++x) {
+                    const bool inside = x >= area.x0 && x < area.x1 && y >= area.y0 && y < area.y1;
+                    if (part.may_hit(x, y)) continue;
+                    CHECK(inside);
+                    ++unmarked_in_area;
+                    for (const Ray& ray : pixel_rays(random, v, x, y))
+                        for (const Bounds& box : boxes) CHECK(!comes_near(ray, box));
+                }
+            CHECK_EQ(unmarked_in_area, part.pixels_spared());
         }
     }
     // Not vacuous: most cameras leave pixels out.
@@ -274,6 +295,29 @@ TEST(renders_with_the_mask_are_the_linear_scans) {
         CHECK(identical(render(scene, options), render(scene, linear)));
     }
     CHECK(sparing > 12);
+}
+
+TEST(a_region_rendered_alone_is_the_whole_renders_crop) {
+    // Its tracers' mask covers the region (and -a's margin) alone, its tiles counted from the
+    // region's corner rather than the image's.
+    Random random(78);
+    for (int trial = 0; trial < 8; ++trial) {
+        const Scene scene = parse_scene(random_scene(random, trial % 4 == 3));
+        const PixelRect region{3, 5, 3 + 7 + trial, 5 + 6 + trial};
+        for (const bool adaptive : {false, true}) {
+            RenderOptions options;
+            options.samples = 2;
+            if (adaptive) options.adaptive_threshold = 0.05;
+            const Raster whole = render(scene, options);
+            const Raster part = render_region(scene, options, region);
+            for (int y = region.y0; y < region.y1; ++y)
+                for (int x = region.x0; x < region.x1; ++x)
+                    for (std::size_t i = 0; i < kSpectrumComponents; ++i)
+                        CHECK_EQ(
+                            std::bit_cast<std::uint64_t>(part.at(x - region.x0, y - region.y0)[i]),
+                            std::bit_cast<std::uint64_t>(whole.at(x, y)[i]));
+        }
+    }
 }
 
 }  // namespace

@@ -73,6 +73,9 @@ struct RenderStats {
 class alignas(64) Tracer {
   public:
     Tracer(const Scene& scene, const RenderOptions& options);
+    // The same for rendering the pixels of `area` alone (a region of the image, with -a's
+    // margin): the primary mask is made for them only.
+    Tracer(const Scene& scene, const RenderOptions& options, const PixelRect& area);
 
     // The light arriving back along a ray; depth and weight as the contract's recursion rules,
     // ior and absorption those of the medium the ray travels in: what the ray brings back from

@@ -19,6 +19,7 @@
 #include <span>
 #include <vector>
 
+#include "rt/raster.h"
 #include "rt/ray.h"
 #include "rt/viewer.h"
 
@@ -28,25 +29,30 @@ class PrimaryMask {
   public:
     // Every pixel marked.
     PrimaryMask() = default;
-    // The pixels of the viewer's image whose primary rays may cross one of `boxes`.
+    // The pixels of `area` (of the viewer's image; the whole image by default) whose primary
+    // rays may cross one of `boxes`. Pixels outside the area are all marked: a render of a
+    // region makes the mask of the region alone, at the region's cost.
     PrimaryMask(const Viewer& viewer, std::span<const Bounds> boxes);
+    PrimaryMask(const Viewer& viewer, std::span<const Bounds> boxes, const PixelRect& area);
 
-    // Whether a primary ray of pixel (x, y), within the image, may cross one of the boxes.
+    // Whether a primary ray of pixel (x, y) may cross one of the boxes.
     bool may_hit(int x, int y) const {
-        if (everywhere_) return true;
-        const auto column = static_cast<std::size_t>(x) >> kTileShift;
-        const auto row = static_cast<std::size_t>(y) >> kTileShift;
+        if (everywhere_ || x < area_.x0 || y < area_.y0 || x >= area_.x1 || y >= area_.y1)
+            return true;
+        const auto column = static_cast<std::size_t>(x - area_.x0) >> kTileShift;
+        const auto row = static_cast<std::size_t>(y - area_.y0) >> kTileShift;
         return tiles_[row * columns_ + column] != 0;
     }
     // Whether every pixel is marked (no ray is spared the walk).
     bool everywhere() const { return everywhere_; }
-    // How many of the image's pixels are not marked.
+    // How many of the area's pixels are not marked.
     std::size_t pixels_spared() const { return spared_; }
 
   private:
     static constexpr int kTileShift = 2;  // tiles of 4 x 4 pixels
 
     bool everywhere_ = true;
+    PixelRect area_;           // the pixels the tiles cover
     std::size_t columns_ = 0;  // tiles per row
     std::vector<std::uint8_t> tiles_;
     std::size_t spared_ = 0;

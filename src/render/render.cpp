@@ -206,7 +206,10 @@ auto with_tracers(const Scene& scene, const RenderOptions& options, const PixelR
     if (region.empty() || !image.contains(region))
         throw std::invalid_argument("render_region: the region is empty or outside the image");
     const int threads = render_threads(options, region);
-    std::vector<Tracer> tracers(static_cast<std::size_t>(threads), Tracer(scene, options));
+    // The tracers' primary mask covers the pixels traced: the region, and with -a the
+    // one-ray margin around it.
+    std::vector<Tracer> tracers(static_cast<std::size_t>(threads),
+                                Tracer(scene, options, one_ray_rect(region, image)));
     auto result = render(tracers);
     if (stats != nullptr)
         for (const Tracer& tracer : tracers) *stats += tracer.stats();

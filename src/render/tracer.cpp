@@ -71,6 +71,9 @@ Vec3 visible_shading_normal(const Vec3& outward, bool leaving, const Vec3& direc
 }  // namespace
 
 Tracer::Tracer(const Scene& scene, const RenderOptions& options)
+    : Tracer(scene, options, {0, 0, scene.viewer.xres, scene.viewer.yres}) {}
+
+Tracer::Tracer(const Scene& scene, const RenderOptions& options, const PixelRect& area)
     : scene_(scene),
       index_(scene.index.get()),
       options_(options),
@@ -82,13 +85,13 @@ Tracer::Tracer(const Scene& scene, const RenderOptions& options)
     if (options_.queries != nullptr) options_.accelerate = false;
     if (options_.accelerate && (index_ == nullptr || !index_->covers(scene_.objects.size())))
         throw std::logic_error("Tracer: the scene's index was not built (Scene::build_index)");
-    if (options_.accelerate) {
-        // One box for every 256 pixels at most: the mask costs its boxes' projections and the
-        // tiles they cover, a small part of the render however many objects there are.
-        const auto pixels = static_cast<std::size_t>(std::max(scene.viewer.xres, 0)) *
-                            static_cast<std::size_t>(std::max(scene.viewer.yres, 0));
+    if (options_.accelerate && !area.empty()) {
+        // One box for every 256 pixels rendered at most: the mask costs its boxes' projections
+        // and the tiles they cover, a small part of the render however many objects there are.
+        const std::size_t pixels =
+            static_cast<std::size_t>(area.width()) * static_cast<std::size_t>(area.height());
         primary_mask_ = std::make_shared<const PrimaryMask>(
-            scene.viewer, index_->outline(std::max<std::size_t>(pixels / 256, 8)));
+            scene.viewer, index_->outline(std::max<std::size_t>(pixels / 256, 8)), area);
     }
 }
 
