@@ -969,7 +969,7 @@ std::string random_mesh(Random& random, int triangles, bool smooth) {
 
 TEST(a_lone_mesh_is_asked_directly_and_answers_as_the_scan) {
     // A scene whose one bounded object is a mesh (a model, alone or on a floor) asks the mesh
-    // without testing its box first (ObjectIndex, lone_hierarchy_): the mesh's own walk turns
+    // without testing its box first (ObjectIndex, lone_outline_): the mesh's own walk turns
     // away a ray outside its box. The answers must be the linear scan's, for rays that
     // miss the box as for rays aimed into it; a mesh in a frame still waits behind its box.
     const std::string floor = "2 -3  0 1 0  100 0 1 0 0 1 1 0 1\n";

@@ -684,12 +684,13 @@ std::vector<Bounds> Bvh::outline(std::size_t at_most) const {
     // Level by level: the leaves met so far, and the wide nodes whose children are the rest.
     std::vector<std::uint32_t> level{0}, next;
     for (;;) {
-        std::size_t deeper = boxes.size();  // the cut's size one level down
+        // The cut's size here and one level down (the same where every child is a leaf).
+        std::size_t here = boxes.size(), deeper = boxes.size();
         for (const std::uint32_t n : level)
-            for (int i = 0; i < wide_[n].size; ++i)
+            for (int i = 0; i < wide_[n].size; ++i) {
+                ++here;
                 deeper += wide_[n].is_leaf(i) ? 1 : wide_[wide_[n].child[i]].size;
-        std::size_t here = boxes.size();
-        for (const std::uint32_t n : level) here += wide_[n].size;
+            }
         if (deeper == here || deeper > at_most) break;
         next.clear();
         for (const std::uint32_t n : level)

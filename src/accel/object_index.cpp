@@ -85,8 +85,7 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
             entries_[place[j]] = entry(objects[bounded[j]], bounded[j]);
     });
     entries_.insert(entries_.end(), unbounded.begin(), unbounded.end());
-    lone_hierarchy_ = bounded_count_ == 1 && objects[bounded[0]].shape.own_hierarchy();
-    if (lone_hierarchy_) lone_outline_ = objects[bounded[0]].shape.functions->outline;
+    if (bounded_count_ == 1) lone_outline_ = objects[bounded[0]].shape.functions->outline;
     if (spheres > 0 && cull_pays()) {
         cull_ = SphereCull(bounded_count_);
         for (std::size_t i = 0; i < bounded_count_; ++i)
@@ -193,7 +192,7 @@ bool ObjectIndex::closest_in(const Ray& ray, Interval range, Found& found, std::
     // The unbounded objects first: a floor under everything prunes much of the tree.
     for (auto i = static_cast<std::uint32_t>(bounded_count_); i < entries_.size(); ++i) test(i);
     if (!bounded) return best_object != kNone;
-    if (lone_hierarchy_) {
+    if (lone_hierarchy()) {
         test(0);
     } else if constexpr (Culled) {
         SphereCull::Ray8 cull_ray{};
@@ -254,7 +253,7 @@ bool ObjectIndex::any_in(const Ray& ray, Interval range, Blocker* last,
     // not tried ahead) has nothing more to offer: its walk would prepare the ray and test the
     // box only to skip it.
     if (bounded_count_ == 1 && tried == 0) return false;
-    if (lone_hierarchy_) return stops(0);
+    if (lone_hierarchy()) return stops(0);
     if constexpr (Culled) {
         SphereCull::Ray8 cull_ray{};
         bool prepared = false;

@@ -55,8 +55,8 @@ class ObjectIndex {
     // them (but at least the root's children); none where there is no bounded object.
     // A lone object with a hierarchy of its own gives its own (Shape::own_hierarchy).
     std::vector<Bounds> outline(std::size_t at_most) const {
-        return lone_hierarchy_ ? lone_outline_(entries_[0].test.call.data, at_most)
-                               : bvh_.outline(at_most);
+        return lone_hierarchy() ? lone_outline_(entries_[0].test.call.data, at_most)
+                                : bvh_.outline(at_most);
     }
     // Whether any object is hit in range. With `last`, its object is tried first, and it
     // is set to the blocker found.
@@ -126,12 +126,13 @@ class ObjectIndex {
     std::vector<Entry, UninitializedAllocator<Entry>> entries_;
     std::size_t bounded_count_ = 0;
     std::size_t object_count_ = 0;
-    // The one bounded object has a hierarchy of its own (Shape::own_hierarchy: a model,
-    // alone or on a floor): it is asked directly, since its own walk turns away a ray
-    // outside its box about as fast as this one's would, and the walk here cost the SPD's
-    // nurbtst 9 % of its instructions (docs/performance.md, "A lone mesh asked directly").
-    bool lone_hierarchy_ = false;
-    OutlineFn* lone_outline_ = nullptr;  // that object's outline column
+    // Where the one bounded object has a hierarchy of its own (Shape::own_hierarchy: a
+    // model, alone or on a floor), that object's outline column; nullptr elsewhere. Such an
+    // object is asked directly, since its own walk turns away a ray outside its box about as
+    // fast as this one's would, and the walk here cost the SPD's nurbtst 9 % of its
+    // instructions (docs/performance.md, "A lone mesh asked directly").
+    OutlineFn* lone_outline_ = nullptr;
+    bool lone_hierarchy() const { return lone_outline_ != nullptr; }
     // Where cull_pays(): the spheres, culled eight at a time before their exact tests (in
     // scenes of spheres that overlap heavily, which the hierarchy cannot part, the render
     // took 0.73-0.94 of the time, the more overlap the less). Empty elsewhere.

@@ -23,7 +23,7 @@ PrimaryMask::PrimaryMask(const Viewer& viewer, std::span<const Bounds> boxes)
 PrimaryMask::PrimaryMask(const Viewer& viewer, std::span<const Bounds> boxes, const PixelRect& area)
     : area_(area) {
     if (viewer.xres <= 0 || viewer.yres <= 0 || area.empty()) return;
-    const Projection projection(viewer, primary_nearest(viewer));
+    const Projection projection(viewer);
     if (!projection.usable()) return;
     const auto tiles_across = [](int pixels) {
         return (static_cast<std::size_t>(pixels) + (1u << kTileShift) - 1) >> kTileShift;

@@ -6,12 +6,13 @@
 // walk, whose preparation and root test are most of what a ray that hits nothing costs, is
 // skipped. The answer is the walk's to the bit, so no image changes.
 //
-// The projection is computed in double with a bound on its rounding, and a box is marked two
-// pixels wider on each side than its corners' projections, which covers both that rounding
-// and the primary rays' own (within half a pixel of their pixel's position: the original's
-// ray through the corner, or a sample of its grid). Where the bound is not met (a camera whose
-// vectors are nearly coplanar, a box reaching behind the eye's plane, numbers too large), every
-// pixel is marked: the mask only ever saves work.
+// The projection is computed in double with a bound on its rounding (projection.h), and a box
+// is marked two pixels wider on each side than its corners' projections, which covers both
+// that rounding and the primary rays' own (within half a pixel of their pixel's position: the
+// original's ray through the corner, or a sample of its grid). A box reaching behind the eye
+// is cut where primary rays can first meet anything. Where the bound is not met (a camera
+// whose vectors are nearly coplanar, numbers too large), every pixel is marked: the mask only
+// ever saves work.
 #pragma once
 
 #include <cstddef>

@@ -1,7 +1,6 @@
-// Where points land among the pixels of an image seen from an eye, with a bound on the
+// Where points land among the pixels of an image seen from the eye, with a bound on the
 // rounding: the geometry the primary mask (primary_mask.h) projects boxes with, apart from
-// its tiles. (A light buffer for shadow rays projected with it too, and was not kept:
-// docs/performance.md.)
+// its tiles.
 #pragma once
 
 #include <algorithm>
@@ -19,6 +18,11 @@ inline constexpr double kProjectionEpsilon = 0x1p-53;
 
 inline double triple(const Vec3& a, const Vec3& b, const Vec3& c) { return dot(a, cross(b, c)); }
 
+// A rectangle of raster positions; empty (x0 > x1) until a point is added.
+struct Rectangle {
+    double x0 = HUGE_VAL, x1 = -HUGE_VAL, y0 = HUGE_VAL, y1 = -HUGE_VAL;
+};
+
 // Where a point lands among the pixels, seen from the eye: the inverse of the map from a
 // raster position (px, py) to a direction, d0 + alpha x + beta y with d0 the eye's way to the
 // image plane's centre, alpha = (2 px - xres) / xres and beta = (yres - 2 py) / yres
@@ -30,9 +34,7 @@ class Projection {
     // How far (in pixels) the tracer's rounding may move a primary ray: checked.
     static constexpr double kMaxRayError = 0.25;
 
-    // `nearest`: the least s of a point that matters (nearest()).
-    Projection(const Viewer& v, double nearest)
-        : eye_(v.eye), xres_(v.xres), yres_(v.yres), nearest_(nearest) {
+    explicit Projection(const Viewer& v) : eye_(v.eye), xres_(v.xres), yres_(v.yres) {
         const Vec3 centre = v.plane_centre();
         const Vec3 d0 = centre - v.eye;
         const double det = triple(d0, v.x, v.y);
@@ -40,6 +42,10 @@ class Projection {
         // |det| is at most the product of the sizes; their ratio is the frame's conditioning.
         const double conditioning = d0_size * x_size * y_size / std::fabs(det);
         if (!(conditioning <= 1e6)) return;  // nearly coplanar, or not finite
+        // A primary ray's hits lie beyond the tracer's tolerance (hit_tolerance) along a unit
+        // direction, whose s is 1 / |d0 + alpha x + beta y|: at s above twice this.
+        nearest_ = 0.5 * kHitTolerance * (1 + max_abs_component(v.eye)) /
+                   (d0_size + 2 * x_size + 2 * y_size);
         to_s_ = cross(v.x, v.y) / det;
         to_a_ = cross(v.y, d0) / det;
         to_b_ = cross(d0, v.x) / det;
@@ -68,14 +74,12 @@ class Projection {
         s = dot(p - eye_, to_s_);
         return std::isfinite(s) && s_size_ * rounding_unit(p) < nearest_ / 2;
     }
-    // Points at s below this do not matter (primary rays meet nothing there): a box is cut
-    // there (clipped).
+    // Primary rays meet nothing at s below this: a box is cut there (clipped).
     double nearest() const { return nearest_; }
 
-    // Widens [x0, x1] x [y0, y1] (raster positions) to hold point p's projection and its
-    // rounding; false where the point is not clearly before the eye's plane, or where the
-    // numbers are not finite.
-    bool add(const Vec3& p, double& x0, double& x1, double& y0, double& y1) const {
+    // Widens `r` to hold point p's projection and its rounding; false where the point is not
+    // clearly before the eye's plane, or where the numbers are not finite.
+    bool add(const Vec3& p, Rectangle& r) const {
         const Vec3 q = p - eye_;
         const double s = dot(q, to_s_), a = dot(q, to_a_), b = dot(q, to_b_);
         const double unit = rounding_unit(p);
@@ -91,10 +95,10 @@ class Projection {
         const double py_error =
             (beta_error + 4 * kProjectionEpsilon * (1 + std::fabs(beta))) * yres_ / 2;
         if (!std::isfinite(px + px_error) || !std::isfinite(py + py_error)) return false;
-        x0 = std::min(x0, px - px_error);
-        x1 = std::max(x1, px + px_error);
-        y0 = std::min(y0, py - py_error);
-        y1 = std::max(y1, py + py_error);
+        r.x0 = std::min(r.x0, px - px_error);
+        r.x1 = std::max(r.x1, px + px_error);
+        r.y0 = std::min(r.y0, py - py_error);
+        r.y1 = std::max(r.y1, py + py_error);
         return true;
     }
 
@@ -115,19 +119,6 @@ class Projection {
     bool usable_ = false;
 };
 
-// The least s a primary ray's hit can have (Projection's nearest): hits lie beyond the
-// tracer's tolerance (hit_tolerance) along a unit direction, whose s is
-// 1 / |d0 + alpha x + beta y|, so at s above twice this.
-inline double primary_nearest(const Viewer& v) {
-    return 0.5 * kHitTolerance * (1 + max_abs_component(v.eye)) /
-           (length(v.plane_centre() - v.eye) + 2 * length(v.x) + 2 * length(v.y));
-}
-
-// A rectangle of raster positions; empty (x0 > x1) until a point is added.
-struct Rectangle {
-    double x0 = HUGE_VAL, x1 = -HUGE_VAL, y0 = HUGE_VAL, y1 = -HUGE_VAL;
-};
-
 // The rectangle that holds the projection of the part of `box` at s >= nearest(): a
 // polytope whose corners are the box's corners there and the points where its edges cross
 // s = nearest, so its projection is the hull of theirs. Empty where the box lies wholly
@@ -142,15 +133,12 @@ inline bool project_box(const Projection& projection, const Bounds& box, Rectang
     }
     const double nearest = projection.nearest();
     for (int c = 0; c < 8; ++c) {
-        if (depths[c] >= nearest && !projection.add(corners[c], r.x0, r.x1, r.y0, r.y1))
-            return false;
+        if (depths[c] >= nearest && !projection.add(corners[c], r)) return false;
         for (const int axis : {1, 2, 4}) {
             const int other = c | axis;  // the edge from c along this axis
             if (other == c || (depths[c] >= nearest) == (depths[other] >= nearest)) continue;
             const double f = (nearest - depths[c]) / (depths[other] - depths[c]);
-            if (!projection.add(corners[c] + f * (corners[other] - corners[c]), r.x0, r.x1, r.y0,
-                                r.y1))
-                return false;
+            if (!projection.add(corners[c] + f * (corners[other] - corners[c]), r)) return false;
         }
     }
     return true;
