@@ -134,6 +134,38 @@ TEST(a_light_that_adds_nothing_casts_no_shadow_ray) {
     CHECK_EQ(shadow, 1u);
 }
 
+// Each level of the ray tree keeps its own last blocker per light (Tracer::blockers_at).
+// Two floor points shadowed by two different spheres: traced in turns at one level, each
+// shadow ray first asks the other point's blocker in vain; at two levels, each finds its own,
+// and the turns cost exactly the tests that tracing each point's rays together costs. The
+// answers (shadowed, ambient only) never depend on the order.
+TEST(each_level_of_the_ray_tree_keeps_its_own_last_blocker) {
+    const std::string white = "  100 1 1 1 0 1 1 0 1\n";
+    const Scene scene = parse_scene(kViewer2x2 + "2 0  0 1 0" + white + "1 1  -5 3 0" + white +
+                                    "1 1  5 3 0" + white + "104 0 1000 0  1 1 1\n" +
+                                    "103 0.5 0.5 0.5\n");
+    const Ray under_a{{-5, 1.5, 0}, {0, -1, 0}};  // below sphere A, down to the floor
+    const Ray under_b{{5, 1.5, 0}, {0, -1, 0}};
+    constexpr int kRays = 10;
+    const auto tests = [&](int depth_a, int depth_b, bool in_turns) {
+        Tracer tracer(scene, RenderOptions{});
+        for (int i = 0; i < 2 * kRays; ++i) {
+            const bool a = in_turns ? i % 2 == 0 : i < kRays;
+            const Spectrum v = a ? tracer.trace(under_a, depth_a) : tracer.trace(under_b, depth_b);
+            CHECK_NEAR(v, Spectrum(0.5), 0);  // ambient 0.5 x kd 1 x white: in shadow
+        }
+        CHECK_EQ(tracer.stats().shadow_rays, std::uint64_t{2 * kRays});
+        return tracer.stats().object_tests;
+    };
+    // One level: every turn but the first asks the other point's blocker first, in vain (and
+    // then the floor and the hierarchy, which a blocker found first spares).
+    CHECK(tests(0, 0, true) >= tests(0, 0, false) + 2 * kRays - 2);
+    // Two levels, and the levels past the last row shared (kBlockerLevels): no test more.
+    CHECK_EQ(tests(0, 1, true), tests(0, 1, false));
+    CHECK_EQ(tests(2, 5, true), tests(2, 5, false));
+    CHECK(tests(7, 9, true) > tests(7, 9, false));
+}
+
 TEST(switches_remove_their_terms) {
     const std::string scene = kViewer2x2 + kSphere + "104 0 0 10  1 1 1\n103 0.5 0.5 0.5\n";
     RenderOptions options;

@@ -79,7 +79,10 @@ Tracer::Tracer(const Scene& scene, const RenderOptions& options, const PixelRect
       options_(options),
       escaped_(scene.background.value_or(scene.ambient)),
       plane_centre_(scene.viewer.plane_centre()),
-      last_blockers_(kBlockerPadding + scene.lights.size() + kBlockerPadding) {
+      blocker_levels_(std::clamp(options.max_depth, 0, kBlockerLevels - 1) + 1),
+      last_blockers_(kBlockerPadding +
+                     static_cast<std::size_t>(blocker_levels_) * scene.lights.size() +
+                     kBlockerPadding) {
     // A backend replaces the hierarchy: it is asked on the path of the linear scan, so that
     // rt's own path (the hierarchy's) does not test for it on every ray.
     if (options_.queries != nullptr) options_.accelerate = false;
@@ -136,7 +139,7 @@ bool Tracer::blocked(const Ray& ray, double distance, LastBlocker* last) {
 }
 
 Spectrum Tracer::direct_light(const Vec3& point, const Vec3& facing_normal, const Vec3& shading,
-                              const Vec3& reflected, const Material& m, double ks) {
+                              const Vec3& reflected, const Material& m, double ks, int depth) {
     // Without a diffuse term (kd or the colour zero, or diffuse light off) only a highlight
     // can light the point, and where it is exactly zero the light adds nothing, blocked or
     // not: then no shadow ray is needed. A mirror's highlight is zero wherever the light
@@ -144,13 +147,16 @@ Spectrum Tracer::direct_light(const Vec3& point, const Vec3& facing_normal, cons
     // SPD's mirrors') wherever r.s is below 0.993. With a diffuse term the shadow ray comes
     // first, as always, so that a blocked one costs neither term.
     return options_.diffuse && m.kd != 0 && !m.colour.is_black()
-               ? lights_at<true>(point, facing_normal, shading, reflected, m, ks)
-               : lights_at<false>(point, facing_normal, shading, reflected, m, ks);
+               ? lights_at<true>(point, facing_normal, shading, reflected, m, ks,
+                                 blockers_at(depth))
+               : lights_at<false>(point, facing_normal, shading, reflected, m, ks,
+                                  blockers_at(depth));
 }
 
 template <bool Diffuse>
 Spectrum Tracer::lights_at(const Vec3& point, const Vec3& facing_normal, const Vec3& shading,
-                           const Vec3& reflected, const Material& m, double ks) {
+                           const Vec3& reflected, const Material& m, double ks,
+                           LastBlocker* blockers) {
     Spectrum total(0.0);
     for (std::size_t l = 0; l < scene_.lights.size(); ++l) {
         const Light& light = scene_.lights[l];
@@ -168,7 +174,7 @@ Spectrum Tracer::lights_at(const Vec3& point, const Vec3& facing_normal, const V
             // helper the compiler kept more in memory, and diffuse surfaces' lighting took
             // about 7 % more instructions (docs/performance.md).
             const Ray shadow_ray{point, s.direction};
-            if (Diffuse && options_.shadows && blocked(shadow_ray, s.distance, &last_blocker(l)))
+            if (Diffuse && options_.shadows && blocked(shadow_ray, s.distance, &blockers[l]))
                 continue;
             Spectrum term(0.0);
             if (options_.diffuse) term += m.colour * (m.kd * lambert);
@@ -176,8 +182,8 @@ Spectrum Tracer::lights_at(const Vec3& point, const Vec3& facing_normal, const V
             if (options_.specular && ks > 0 && highlight > 0)
                 term += Spectrum(ks * std::pow(highlight, m.ke));
             const Spectrum lit = s.intensity * term;
-            if (!Diffuse && (lit.is_black() || (options_.shadows &&
-                                                blocked(shadow_ray, s.distance, &last_blocker(l)))))
+            if (!Diffuse && (lit.is_black() ||
+                             (options_.shadows && blocked(shadow_ray, s.distance, &blockers[l]))))
                 continue;
             total += lit;
         }
@@ -236,7 +242,7 @@ Spectrum Tracer::trace(const Ray& ray, int depth, double weight, double ior,
     // surface, the surface mirrors about its face instead.
     if (smooth && !(dot(reflected, facing) > 0)) reflected = reflect(ray.direction, facing);
     if (options_.diffuse || options_.specular)
-        result += direct_light(point, facing, shading, reflected, m, split.highlight);
+        result += direct_light(point, facing, shading, reflected, m, split.highlight, depth);
     // The reflected ray stays in the medium it came through.
     const double ks = split.mirror;
     if (ks > 0 && options_.reflection && may_trace(depth + 1, weight * ks)) {
