@@ -53,6 +53,11 @@ using ReadShapeFn = ShapeData(SceneReader& reader);
 using IntersectFn = bool(const void* shape, const Ray& ray, Interval range, Hit& hit);
 // The unit outward normal at a point on the surface reported by intersect.
 using NormalFn = Vec3(const void* shape, const Vec3& point, const Hit& hit);
+// normal: what the primitive's NormalFn gives for the same point and hit, which the caller
+// has already (a smooth mesh's blend turns to its face normal's side without computing it
+// again).
+using ShadingNormalFn = Vec3(const void* shape, const Vec3& point, const Hit& hit,
+                             const Vec3& normal);
 // A box that contains the whole primitive (infinite for unbounded ones).
 using BoundsFn = Bounds(const void* shape);
 // True when a point lies inside a solid primitive.
@@ -108,7 +113,7 @@ struct PrimitiveFunctions {
     // The unit outward normal that shading uses (the Phong terms, the mirror and refracted
     // directions), where it is not the geometric one: a smooth mesh's blend of vertex
     // normals. nullptr (the usual case): the normal, which then does both jobs.
-    NormalFn* shading_normal = nullptr;
+    ShadingNormalFn* shading_normal = nullptr;
     // For a flat primitive that a fan of triangles from its first corner covers (polygon,
     // triangle): its corners, for handing it to another library as triangles (bench/embree).
     // nullptr: not such a primitive.
@@ -166,10 +171,14 @@ struct Shape {
         return functions->normal(data.get(), point, hit);
     }
     bool has_shading_normal() const { return functions->shading_normal != nullptr; }
-    // The shading normal, or the normal where the type has none of its own.
+    // The shading normal, or the normal where the type has none of its own; `normal` is
+    // normal(point, hit), already computed.
+    Vec3 shading_normal(const Vec3& point, const Hit& hit, const Vec3& normal) const {
+        return has_shading_normal() ? functions->shading_normal(data.get(), point, hit, normal)
+                                    : normal;
+    }
     Vec3 shading_normal(const Vec3& point, const Hit& hit) const {
-        return has_shading_normal() ? functions->shading_normal(data.get(), point, hit)
-                                    : normal(point, hit);
+        return shading_normal(point, hit, normal(point, hit));
     }
     Bounds bounds() const { return functions->bounds(data.get()); }
     bool has_inside() const {

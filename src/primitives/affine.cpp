@@ -88,8 +88,9 @@ Vec3 normal(const void* shape, const Vec3& point, const Hit& hit) {
 }
 
 // The inner primitive's shading normal (its normal where it has none of its own, so that this
-// is then the normal above, bit for bit), carried back as the normal is.
-Vec3 shading_normal(const void* shape, const Vec3& point, const Hit& hit) {
+// is then the normal above, bit for bit), carried back as the normal is. The world normal
+// given is of no use to the inner primitive, which asks for its own.
+Vec3 shading_normal(const void* shape, const Vec3& point, const Hit& hit, const Vec3&) {
     const auto& a = *static_cast<const Affine*>(shape);
     const Vec3 local_normal = a.inner.shading_normal(a.frame.to_local_point(point), hit);
     return normalized(a.frame.normal_to_world(local_normal));

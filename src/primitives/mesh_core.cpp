@@ -123,10 +123,9 @@ constexpr double kFlatTolerance = 1e-12;
 // The weights are computed again from the hit point rather than carried in Hit, which stays
 // as small as it is for every other primitive; the point lies in the triangle's plane up to
 // rounding, and the weights are clamped to the triangle.
-Vec3 blended_normal(const Core& m, std::span<const Vec3> normals, const Vec3& point,
-                    const Hit& hit) {
+Vec3 blended_normal(const Core& m, std::span<const Vec3> normals, const Vec3& point, const Hit& hit,
+                    const Vec3& face_n) {
     const Triangle& tri = m.triangle(hit);
-    const Vec3 face_n = face(m, hit);
     const Vec3& n0 = normals[tri.vertex[0]];
     const Vec3& n1 = normals[tri.vertex[1]];
     const Vec3& n2 = normals[tri.vertex[2]];
@@ -176,10 +175,12 @@ Vec3 normal(const void* shape, const Vec3&, const Hit& hit) {
     return face(mesh_of(shape).core, hit);
 }
 
-Vec3 shading_normal(const void* shape, const Vec3& point, const Hit& hit) {
+// face_n: normal()'s, the face normal, which the blend would otherwise compute again (a
+// square root and four divisions).
+Vec3 shading_normal(const void* shape, const Vec3& point, const Hit& hit, const Vec3& face_n) {
     const ShadedMesh& m = mesh_of(shape);
-    if (m.normals.empty()) return face(m.core, hit);
-    return blended_normal(m.core, m.normals, point, hit);
+    if (m.normals.empty()) return face_n;
+    return blended_normal(m.core, m.normals, point, hit, face_n);
 }
 
 Bounds bounds(const void* shape) { return mesh_of(shape).core.box; }

@@ -128,9 +128,9 @@ Vec3 face(const Core& core, const Hit& hit);
 // triangle: the barycentric blend of its corners' normals, normalised and turned to the face
 // normal's side (vertex normals written against the winding still shade the side a ray
 // sees). Where the blend is zero, where a corner's normal is zero, or within 1e-12 of the
-// face normal, it is the face normal.
+// face normal, it is the face normal. face_n: face(core, hit).
 Vec3 blended_normal(const Core& core, std::span<const Vec3> normals, const Vec3& point,
-                    const Hit& hit);
+                    const Hit& hit, const Vec3& face_n);
 
 // A mesh with vertex normals for shading (16, and 15 where it is smooth): one normal per vertex,
 // or none (flat: the shading normal is the face normal).
@@ -145,7 +145,7 @@ namespace shaded {
 bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit);
 bool intersect_any(const void* shape, const Ray& ray, Interval range, Hit& hit);
 Vec3 normal(const void* shape, const Vec3& point, const Hit& hit);
-Vec3 shading_normal(const void* shape, const Vec3& point, const Hit& hit);
+Vec3 shading_normal(const void* shape, const Vec3& point, const Hit& hit, const Vec3& face_n);
 Bounds bounds(const void* shape);
 std::vector<Bounds> outline(const void* shape, std::size_t at_most);
 }  // namespace shaded

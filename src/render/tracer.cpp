@@ -214,10 +214,10 @@ Spectrum Tracer::trace(const Ray& ray, int depth, double weight, double ior,
     const Vec3 facing = leaving ? -outward : outward;  // d in the Phong model
     // The geometric normal (the face's) decides the side; a smooth mesh shades with its own.
     const bool smooth = object.shape.has_shading_normal();
-    const Vec3 shading = smooth
-                             ? visible_shading_normal(object.shape.shading_normal(point, found.hit),
-                                                      leaving, ray.direction)
-                             : facing;
+    const Vec3 shading =
+        smooth ? visible_shading_normal(object.shape.shading_normal(point, found.hit, outward),
+                                        leaving, ray.direction)
+               : facing;
     const Material m = object.surface_at(found.hit).at(point);
     Spectrum result(0.0);
 
