@@ -122,11 +122,11 @@ class alignas(64) Tracer {
     bool blocked(const Ray& ray, double distance, LastBlocker* last);
     // facing_normal: the geometric normal turned to the ray; shading: the shading normal, the
     // same side (the same vector but for a smooth mesh).
-    // depth: the hit's level in the ray tree, which picks the lights' last blockers.
+    // blockers: the last blockers of the hit's level in the ray tree, one per light.
     Spectrum direct_light(const Vec3& point, const Vec3& facing_normal, const Vec3& shading,
-                          const Vec3& reflected, const Material& m, double ks, int depth);
-    // direct_light for a surface with a diffuse term (Diffuse) or without one; blockers: the
-    // level's last blockers, one per light.
+                          const Vec3& reflected, const Material& m, double ks,
+                          LastBlocker* blockers);
+    // direct_light for a surface with a diffuse term (Diffuse) or without one.
     template <bool Diffuse>
     Spectrum lights_at(const Vec3& point, const Vec3& facing_normal, const Vec3& shading,
                        const Vec3& reflected, const Material& m, double ks, LastBlocker* blockers);

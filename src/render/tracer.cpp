@@ -139,7 +139,8 @@ bool Tracer::blocked(const Ray& ray, double distance, LastBlocker* last) {
 }
 
 Spectrum Tracer::direct_light(const Vec3& point, const Vec3& facing_normal, const Vec3& shading,
-                              const Vec3& reflected, const Material& m, double ks, int depth) {
+                              const Vec3& reflected, const Material& m, double ks,
+                              LastBlocker* blockers) {
     // Without a diffuse term (kd or the colour zero, or diffuse light off) only a highlight
     // can light the point, and where it is exactly zero the light adds nothing, blocked or
     // not: then no shadow ray is needed. A mirror's highlight is zero wherever the light
@@ -147,10 +148,8 @@ Spectrum Tracer::direct_light(const Vec3& point, const Vec3& facing_normal, cons
     // SPD's mirrors') wherever r.s is below 0.993. With a diffuse term the shadow ray comes
     // first, as always, so that a blocked one costs neither term.
     return options_.diffuse && m.kd != 0 && !m.colour.is_black()
-               ? lights_at<true>(point, facing_normal, shading, reflected, m, ks,
-                                 blockers_at(depth))
-               : lights_at<false>(point, facing_normal, shading, reflected, m, ks,
-                                  blockers_at(depth));
+               ? lights_at<true>(point, facing_normal, shading, reflected, m, ks, blockers)
+               : lights_at<false>(point, facing_normal, shading, reflected, m, ks, blockers);
 }
 
 template <bool Diffuse>
@@ -242,7 +241,8 @@ Spectrum Tracer::trace(const Ray& ray, int depth, double weight, double ior,
     // surface, the surface mirrors about its face instead.
     if (smooth && !(dot(reflected, facing) > 0)) reflected = reflect(ray.direction, facing);
     if (options_.diffuse || options_.specular)
-        result += direct_light(point, facing, shading, reflected, m, split.highlight, depth);
+        result +=
+            direct_light(point, facing, shading, reflected, m, split.highlight, blockers_at(depth));
     // The reflected ray stays in the medium it came through.
     const double ks = split.mirror;
     if (ks > 0 && options_.reflection && may_trace(depth + 1, weight * ks)) {
