@@ -63,8 +63,8 @@ struct RenderStats {
 };
 
 // Traces rays through a scene. A Tracer counts the rays it traces and remembers the last
-// blocker of each light, so tracing changes it and each thread uses its own; the scene is
-// shared read-only. With options.accelerate (the default) the scene's
+// blocker of each light at each level of the ray tree, so tracing changes it and each thread
+// uses its own; the scene is shared read-only. With options.accelerate (the default) the scene's
 // index must have been built (read_scene does), or construction throws std::logic_error;
 // with options.queries it is not used, nor needed.
 // Aligned to a cache line, and its per-light blockers kept a line away from the ends of their
