@@ -88,6 +88,11 @@ TEST(point_light_random_points) {
             read_light(object_text(falloff ? 101 : 104, {position.x, position.y, position.z,
                                                          colour.x, colour.y, colour.z}));
         const LightSample s = light.sample(x, 0);
+        // The tracer samples a point light inline from its parameters (Light::point): the
+        // same sample to the bit.
+        CHECK(light.point() != nullptr);
+        CHECK(light.point()->position == position && light.point()->falloff == falloff);
+        CHECK(same_bits(sample_point_light(*light.point(), x), s));
         const double dx = position.x - x.x, dy = position.y - x.y, dz = position.z - x.z;
         const double distance = std::hypot(dx, dy, dz);
         CHECK_NEAR(s.distance, distance, 1e-12 * (1 + distance));
@@ -96,6 +101,11 @@ TEST(point_light_random_points) {
         CHECK_NEAR(s.intensity, Spectrum(colour.x * scale, colour.y * scale, colour.z * scale),
                    1e-12 * (1 + 5 * scale));
     }
+}
+
+TEST(only_point_lights_give_their_parameters) {
+    for (const LightType& type : light_types())
+        CHECK_EQ(type.point != nullptr, type.id == 101 || type.id == 104);
 }
 
 TEST(point_light_at_the_lit_point_gives_nothing) {

@@ -8,6 +8,7 @@ ReadLightFn read_with_falloff;
 ReadLightFn read_without_falloff;
 SampleCountFn sample_count;
 SampleLightFn sample;
+PointOfFn point_of;
 }  // namespace rt::point_light
 
 namespace rt::spot_light {

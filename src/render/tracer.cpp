@@ -83,6 +83,8 @@ Tracer::Tracer(const Scene& scene, const RenderOptions& options, const PixelRect
       last_blockers_(kBlockerPadding +
                      static_cast<std::size_t>(blocker_levels_) * scene.lights.size() +
                      kBlockerPadding) {
+    for (const Light& light : scene.lights)
+        light_rows_.push_back({&light, light.point(), light.sample_count()});
     // A backend replaces the hierarchy: it is asked on the path of the linear scan, so that
     // rt's own path (the hierarchy's) does not test for it on every ray.
     if (options_.queries != nullptr) options_.accelerate = false;
@@ -157,11 +159,11 @@ Spectrum Tracer::lights_at(const Vec3& point, const Vec3& facing_normal, const V
                            const Vec3& reflected, const Material& m, double ks,
                            LastBlocker* blockers) {
     Spectrum total(0.0);
-    for (std::size_t l = 0; l < scene_.lights.size(); ++l) {
-        const Light& light = scene_.lights[l];
-        const int samples = light.sample_count();
-        for (int i = 0; i < samples; ++i) {
-            const LightSample s = light.sample(point, i);
+    for (std::size_t l = 0; l < light_rows_.size(); ++l) {
+        const LightRow& light = light_rows_[l];
+        for (int i = 0; i < light.samples; ++i) {
+            const LightSample s = light.point != nullptr ? sample_point_light(*light.point, point)
+                                                         : light.light->sample(point, i);
             const double facing = dot(facing_normal, s.direction);
             // A light lights the point when the face and the shading normal both face it:
             // the face, so that no light leaks through a surface from behind; the shading
