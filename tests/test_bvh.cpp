@@ -887,6 +887,35 @@ TEST(a_shadow_ray_that_misses_the_only_bounded_object_still_meets_the_planes) {
     CHECK(index.any({{0, 5, 0}, {0, -1, 0}}, {1e-9, 4.5}, &last));
 }
 
+TEST(a_blocker_that_lets_a_ray_pass_is_forgotten_unless_a_sphere) {
+    // A disk at x = 10 and a sphere at the origin: a shadow ray that passes forgets the
+    // remembered disk (ObjectIndex::any), so the next one does not ask it first, and keeps
+    // the remembered sphere, cheap to ask again. What blocks is remembered either way.
+    std::string text = kTestViewer;
+    text += "3  10 0 0  1 0 0  1  100 1 0 0 0 1 1 0 1\n";
+    text += "1 1  0 0 0  100 1 0 0 0 1 1 0 1\n";
+    const Scene scene = parse_scene(text);
+    const ObjectIndex& index = *scene.index;
+    const Interval range{1e-9, 100};
+    const Ray to_disk{{5, 0, 0}, {1, 0, 0}}, to_sphere{{0, 5, 0}, {0, -1, 0}};
+    const Ray up{{5, 0, 0}, {0, 1, 0}};  // meets neither
+    LastBlocker disk, sphere;
+    CHECK(index.any(to_disk, range, &disk));
+    CHECK(index.any(to_sphere, range, &sphere));
+    CHECK(disk.entry != LastBlocker{}.entry && sphere.entry != LastBlocker{}.entry);
+    LastBlocker last = disk;
+    CHECK(!index.any(up, range, &last));
+    CHECK_EQ(last.entry, LastBlocker{}.entry);
+    std::uint64_t tests = 0;
+    CHECK(!index.any(up, range, &last, &tests));  // nothing asked ahead of the walk
+    CHECK_EQ(tests, std::uint64_t{0});
+    last = sphere;
+    CHECK(!index.any(up, range, &last));
+    CHECK_EQ(last.entry, sphere.entry);
+    CHECK(index.any(to_disk, range, &last));
+    CHECK_EQ(last.entry, disk.entry);
+}
+
 TEST(a_mesh_that_blocked_last_is_asked_again_only_behind_its_box) {
     // A mesh (a square of two triangles at x = 10), a sphere and a floor. A mesh remembered
     // as a light's last blocker is not tried ahead of the walk (ObjectIndex::any): a shadow

@@ -19,7 +19,8 @@ namespace rt {
 class ObjectIndex;
 
 // The object that last blocked a shadow ray toward one light, as the hierarchy names it.
-// Neighbouring points are mostly shadowed by the same object, so it is tried first.
+// Neighbouring points are mostly shadowed by the same object, so it is tried first; a shadow
+// ray that nothing blocks forgets it, unless it is a sphere (ObjectIndex::any).
 struct LastBlocker {
     std::uint32_t entry = 0xffffffff;  // none yet
 };
