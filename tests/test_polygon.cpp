@@ -3,8 +3,10 @@
 // not by the even-odd crossing count the code uses; and the even-odd rule at known points of
 // a self-intersecting pentagram and of an outline with a notch.
 #include <cmath>
+#include <limits>
 #include <vector>
 
+#include "primitives/even_odd.h"
 #include "random_rays.h"
 #include "scene_util.h"
 
@@ -181,6 +183,84 @@ std::vector<std::vector<Point2>> many_sided_outlines(Random& random) {
 }
 
 }  // namespace
+
+// The box an outline's test asks first (even_odd.h) refuses only points whose crossing count
+// over every edge is even, with the count's own roundings: outlines from 1e-300 to 1e300 in
+// size, far from the origin and near it, and points on and a few units in the last place
+// around the box's sides and the vertices' v, where the crossings round.
+TEST(outline_box_refuses_only_points_the_count_calls_outside) {
+    using polygon::Point2;
+    Random random(29);
+    const double scales[] = {1e-300, 1e-160, 1e-8, 1, 3e5, 1e150, 1e300};
+    auto ulps = [](double x, int k) {
+        for (; k > 0; --k) x = std::nextafter(x, HUGE_VAL);
+        for (; k < 0; ++k) x = std::nextafter(x, -HUGE_VAL);
+        return x;
+    };
+    long points = 0, refused = 0, inside = 0, near_side = 0;
+    for (int i = 0; i < 6000; ++i) {
+        const double scale = scales[i % 7];
+        // A centre up to 1000 sizes away, so that the differences round.
+        const Point2 centre{random.uniform(-1000, 1000) * scale * (i % 3 == 0),
+                            random.uniform(-1000, 1000) * scale * (i % 5 == 0)};
+        const int count = i % 4 == 0 ? 3 : 3 + static_cast<int>(random.uniform(0, 20));
+        std::vector<Point2> outline;
+        for (int k = 0; k < count; ++k) {
+            // Some vertices repeat the first's u or v, so that sides share the box's edge.
+            double u = centre.u + random.uniform(-1, 1) * scale;
+            double v = centre.v + random.uniform(-1, 1) * scale;
+            if (k > 0 && random.uniform() < 0.2) u = outline[0].u;
+            if (k > 0 && random.uniform() < 0.2) v = outline[0].v;
+            outline.push_back({u, v});
+        }
+        const polygon::OutlineBox box = polygon::OutlineBox::of(outline);
+        double u_min = outline[0].u, u_max = u_min;
+        for (const Point2& q : outline)
+            u_min = std::fmin(u_min, q.u), u_max = std::fmax(u_max, q.u);
+        for (int j = 0; j < 60; ++j) {
+            Point2 p;
+            const Point2& vertex = outline[static_cast<std::size_t>(random.uniform(0, count))];
+            const int k = static_cast<int>(random.uniform(-4, 5));
+            switch (j % 4) {
+                case 0:  // anywhere about the outline
+                    p = {centre.u + random.uniform(-1.2, 1.2) * scale,
+                         centre.v + random.uniform(-1.2, 1.2) * scale};
+                    break;
+                case 1:  // just beside the leftmost or rightmost vertex, at a vertex's v
+                    p = {ulps(j % 8 == 1 ? u_min : u_max, k), ulps(vertex.v, k / 2)};
+                    break;
+                case 2:  // beside the box's u sides, anywhere in v
+                    p = {ulps(j % 8 == 2 ? u_min : u_max, k),
+                         centre.v + random.uniform(-1, 1) * scale};
+                    break;
+                default:  // on the box's own sides
+                    p = {j % 8 == 3 ? box.u_low : box.u_high, ulps(vertex.v, k)};
+                    break;
+            }
+            bool odd = false;
+            for (std::size_t a = 0, b = outline.size() - 1; a < outline.size(); b = a++)
+                if (polygon::crosses(outline[a], outline[b], p)) odd = !odd;
+            ++points;
+            inside += odd;
+            if (box.may_hold(p)) continue;
+            ++refused;
+            near_side += j % 4 != 0;
+            CHECK(!odd);
+        }
+    }
+    // The box decides a good part of the points without its edges, close to its sides too.
+    CHECK(refused > points / 5);
+    CHECK(near_side > points / 10);
+    CHECK(inside > points / 20);
+    // A NaN is refused, as the count refuses it; an outline too large for a finite margin
+    // refuses nothing in u.
+    const std::vector<Point2> triangle{{0, 0}, {1, 0}, {0, 1}};
+    CHECK(!polygon::OutlineBox::of(triangle).may_hold({std::nan(""), 0.5}));
+    CHECK(!polygon::OutlineBox::of(triangle).may_hold({0.2, std::nan("")}));
+    const std::vector<Point2> huge{{0, 0}, {1e300, 0}, {0, 1}};
+    CHECK(polygon::OutlineBox::of(huge).may_hold({-1e308, 0.5}));
+    CHECK(polygon::crossing_margin(1, 1, 0) == HUGE_VAL);
+}
 
 TEST(many_sided_outlines_decide_as_the_count_over_every_edge) {
     Random random(1101);

@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "primitives/even_odd.h"
 #include "primitives/planar.h"
 #include "rt/primitive.h"
 #include "rt/reader.h"
@@ -41,10 +42,6 @@ constexpr double kCoplanarTolerance = 1e-4;
 // The vertices span no plane when the farthest of them from the line through the two
 // farthest apart is closer to it than this fraction of their distance.
 constexpr double kCollinearTolerance = 1e-12;
-
-struct Point2 {
-    double u, v;
-};
 
 // The edges of a many-sided outline filed by bands of v, so that a point's crossing count
 // asks only the edges whose v-range reaches its band instead of all of them. The band of a
@@ -75,6 +72,9 @@ struct Polygon {
     int u_axis, v_axis;  // the two world axes the polygon is projected onto
     std::uint32_t vertex_count;
     const Point2* outline;  // vertex_count points
+    // Outside this box no point is inside: most points the walk offers are decided by it,
+    // without an edge's division (even_odd.h).
+    OutlineBox outline_box;
     EdgeBands bands;
     Bounds box;
 };
@@ -88,18 +88,11 @@ int largest_axis(const Vec3& v) {
 
 Point2 project(const Vec3& p, int u_axis, int v_axis) { return {p[u_axis], p[v_axis]}; }
 
-// Whether a ray from p along +u crosses the edge from a to b. Each edge is taken as
-// half-open in v, so a ray through a vertex counts the two edges there once between them.
-bool crosses(const Point2& a, const Point2& b, Point2 p) {
-    if ((a.v > p.v) == (b.v > p.v)) return false;
-    const double crossing_u = a.u + (p.v - a.v) * (b.u - a.u) / (b.v - a.v);
-    return p.u < crossing_u;
-}
-
 // The even-odd rule: whether an odd number of edges cross the ray from p along +u.
 bool even_odd_inside(const Polygon& polygon, Point2 p) {
     const std::span<const Point2> outline(polygon.outline, polygon.vertex_count);
     const std::size_t n = outline.size();
+    if (!polygon.outline_box.may_hold(p)) return false;
     bool inside = false;
     const EdgeBands& bands = polygon.bands;
     if (bands.bands() == 0) {
@@ -107,8 +100,6 @@ bool even_odd_inside(const Polygon& polygon, Point2 p) {
             if (crosses(outline[i], outline[j], p)) inside = !inside;
         return inside;
     }
-    // No edge reaches a v outside the outline's (nor a NaN).
-    if (!(p.v >= bands.origin && p.v <= bands.top)) return false;
     const std::size_t band = bands.band_of(p.v);
     for (std::uint32_t k = bands.first[band]; k < bands.first[band + 1]; ++k) {
         const std::uint32_t i = bands.edges[k];
@@ -236,8 +227,11 @@ ShapeData read(SceneReader& reader) {
     auto* outline = reinterpret_cast<Point2*>(room + sizeof(Polygon));
     for (std::size_t i = 0; i < vertices.size(); ++i)
         ::new (static_cast<void*>(outline + i)) Point2(project(vertices[i], u_axis, v_axis));
-    auto* polygon = ::new (static_cast<void*>(room)) Polygon{
-        {n, offset}, u_axis, v_axis, static_cast<std::uint32_t>(vertices.size()), outline, {}, box};
+    auto* polygon = ::new (static_cast<void*>(room))
+        Polygon{{n, offset}, u_axis,
+                v_axis,      static_cast<std::uint32_t>(vertices.size()),
+                outline,     OutlineBox::of({outline, vertices.size()}),
+                {},          box};
     file_edges(*polygon, reader);
     return reader.placed_shape_data(polygon);
 }
