@@ -4,6 +4,7 @@
 #include <numbers>
 #include <tuple>
 #include <utility>
+#include <vector>
 
 #include "rt/optics.h"
 #include "rt/render.h"
@@ -141,9 +142,9 @@ TEST(a_light_that_adds_nothing_casts_no_shadow_ray) {
 // answers (shadowed, ambient only) never depend on the order.
 TEST(each_level_of_the_ray_tree_keeps_its_own_last_blocker) {
     const std::string white = "  100 1 1 1 0 1 1 0 1\n";
-    const Scene scene = parse_scene(kViewer2x2 + "2 0  0 1 0" + white + "1 1  -5 3 0" + white +
-                                    "1 1  5 3 0" + white + "104 0 1000 0  1 1 1\n" +
-                                    "103 0.5 0.5 0.5\n");
+    const Scene scene =
+        parse_scene(kViewer2x2 + "2 0  0 1 0" + white + "1 1  -5 3 0" + white + "1 1  5 3 0" +
+                    white + "104 0 1000 0  1 1 1\n" + "103 0.5 0.5 0.5\n");
     const Ray under_a{{-5, 1.5, 0}, {0, -1, 0}};  // below sphere A, down to the floor
     const Ray under_b{{5, 1.5, 0}, {0, -1, 0}};
     constexpr int kRays = 10;
@@ -164,6 +165,52 @@ TEST(each_level_of_the_ray_tree_keeps_its_own_last_blocker) {
     CHECK_EQ(tests(0, 1, true), tests(0, 1, false));
     CHECK_EQ(tests(2, 5, true), tests(2, 5, false));
     CHECK(tests(7, 9, true) > tests(7, 9, false));
+}
+
+// With four lights or more the point lights are sampled before the loop over the lights
+// (Tracer::kBatchFrom); the terms must be those of the lights one at a time, added in the
+// scene's order. Nine lights of every kind (one more than the batch holds, so the last is
+// sampled in the loop; one sample each, since a light's own samples are added together
+// first), some shadowed by a small sphere, at points all over a sphere and a floor: each
+// pixel is compared with the sum, in order, of the same pixel lit by each light alone, to
+// the bit. Taking one light's batched sample for another's fails it.
+TEST(many_lights_sum_as_each_light_alone_in_order) {
+    const std::string viewer = "102  0 1 6  0 0.5 0  1 0 0  0 1 0  24 24\n";
+    const std::string objects =
+        "1 1  0 0.6 0  100 0.9 0.6 0.3 0.4 20 0.7 0 1\n"
+        "1 0.15  -0.9 1.9 0.4  100 0.2 0.8 0.4 0.3 5 0.9 0 1\n"
+        "2 0  0 1 0  100 0.7 0.7 0.7 0.2 8 0.8 0 1\n";
+    const std::vector<std::string> lights = {
+        "101  -3 4 2  9 8 7\n",
+        "104  2 3 4  0.3 0.2 0.1\n",
+        "113  0.3 -1 -0.2  0.2 0.25 0.3\n",
+        "104  -2 5 -1  0.1 0.3 0.2\n",
+        "109  1 4 3  -0.2 -1 -0.6  0.8 4  6 6 6\n",
+        "101  4 2 -3  5 5 8\n",
+        "110  1  -4 3 3  0.5  4 4 4\n",
+        "104  0 6 0  0.2 0.2 0.2\n",
+        "101  -1.5 3.5 1.5  3 2 1\n",
+    };
+    std::string all;
+    for (const std::string& light : lights) all += light;
+    RenderOptions options;
+    options.ambient = false;  // a pixel is then its lights' sum alone
+    options.max_depth = 0;    // and no reflection adds to it
+    const Scene scene = parse_scene(viewer + objects + all);
+    std::vector<Scene> alone;
+    for (const std::string& light : lights) alone.push_back(parse_scene(viewer + objects + light));
+    Tracer tracer(scene, options);
+    int lit = 0;
+    for (int y = 0; y < 24; ++y) {
+        for (int x = 0; x < 24; ++x) {
+            Spectrum sum(0.0);
+            for (const Scene& one : alone) sum += Tracer(one, options).pixel(x, y);
+            const Spectrum value = tracer.pixel(x, y);
+            CHECK(value == sum);
+            lit += !value.is_black();
+        }
+    }
+    CHECK(lit > 24 * 24 / 2);
 }
 
 TEST(switches_remove_their_terms) {
