@@ -156,7 +156,6 @@ class alignas(64) Tracer {
     // fewer it did not pay for its stores (docs/performance.md, "Point lights sampled first").
     static constexpr std::size_t kBatchFrom = 4;
     static constexpr std::size_t kBatchedLights = 8;
-    bool batch_lights_ = false;
     // Which pixels' primary rays may meet a bounded object; shared by the copies a render
     // makes for its threads (read-only). Empty without the hierarchy.
     std::shared_ptr<const PrimaryMask> primary_mask_;

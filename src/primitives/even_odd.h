@@ -1,6 +1,7 @@
 // The polygon's even-odd rule (polygon.cpp): the crossing test of one edge, and the box
 // outside which no point is inside, which decides most points before any edge's division
-// without changing one answer (docs/performance.md, "Polygons: a box before the edges").
+// without changing one answer (docs/performance.md, "Polygons with many vertices", "A box
+// before the edges").
 #pragma once
 
 #include <cfloat>

@@ -228,10 +228,14 @@ ShapeData read(SceneReader& reader) {
     for (std::size_t i = 0; i < vertices.size(); ++i)
         ::new (static_cast<void*>(outline + i)) Point2(project(vertices[i], u_axis, v_axis));
     auto* polygon = ::new (static_cast<void*>(room))
-        Polygon{{n, offset}, u_axis,
-                v_axis,      static_cast<std::uint32_t>(vertices.size()),
-                outline,     OutlineBox::of({outline, vertices.size()}),
-                {},          box};
+        Polygon{.plane = {n, offset},
+                .u_axis = u_axis,
+                .v_axis = v_axis,
+                .vertex_count = static_cast<std::uint32_t>(vertices.size()),
+                .outline = outline,
+                .outline_box = OutlineBox::of({outline, vertices.size()}),
+                .bands = {},
+                .box = box};
     file_edges(*polygon, reader);
     return reader.placed_shape_data(polygon);
 }

@@ -86,7 +86,6 @@ Tracer::Tracer(const Scene& scene, const RenderOptions& options, const PixelRect
                      kBlockerPadding) {
     for (const Light& light : scene.lights)
         light_rows_.push_back({&light, light.point(), light.sample_count()});
-    batch_lights_ = light_rows_.size() >= kBatchFrom;
     // A backend replaces the hierarchy: it is asked on the path of the linear scan, so that
     // rt's own path (the hierarchy's) does not test for it on every ray.
     if (options_.queries != nullptr) options_.accelerate = false;
@@ -152,7 +151,7 @@ Spectrum Tracer::direct_light(const Vec3& point, const Vec3& facing_normal, cons
     // SPD's mirrors') wherever r.s is below 0.993. With a diffuse term the shadow ray comes
     // first, as always, so that a blocked one costs neither term.
     const bool diffuse = options_.diffuse && m.kd != 0 && !m.colour.is_black();
-    if (batch_lights_)
+    if (light_rows_.size() >= kBatchFrom)
         return diffuse ? lights_at<true, true>(point, facing_normal, shading, reflected, m, ks,
                                                blockers)
                        : lights_at<false, true>(point, facing_normal, shading, reflected, m, ks,
@@ -168,8 +167,8 @@ Spectrum Tracer::lights_at(const Vec3& point, const Vec3& facing_normal, const V
                            LastBlocker* blockers) {
     Spectrum total(0.0);
     // Batched: the point lights' samples first, with the same arithmetic, so the same values.
-    // Left unconstructed until sampled: zeroing eight samples at every hit cost more than
-    // the batch saved.
+    // Left unconstructed until sampled, so that no hit zeroes eight samples first (0.4 % of
+    // the SPD's tree's and lattice's instructions).
     union Slot {
         LightSample sample;
         Slot() {}
