@@ -787,13 +787,13 @@ TEST(same_nearest_hit_and_shadows_as_the_linear_scan) {
 // leaves, whose spheres the index culls eight at a time (SphereCull) before their exact
 // tests: the nearest hits and the shadows must still be the linear scan's, to the bit, with
 // half the rays aimed at centres and half of those at surfaces, where rays graze.
-TEST(overlapping_spheres_culled_give_the_linear_scans_answers) {
-    Random random(404);
+// Spheres on a spiral, each a little smaller than the one before, every tenth twice (a tie
+// the file order must break), with a disk every fiftieth: enough overlap for the index to cull
+// them (SphereCull). Their centres and points on their surfaces go into targets.
+std::string spiral_of_spheres(Random& random, std::vector<Vec3>& targets) {
     std::ostringstream text;
     text.precision(17);
-    text << rt_test::kTestViewer;
     const char* const surface = " 100 0.8 0.5 0.3 0.2 30 0.8 0 1\n";
-    std::vector<Vec3> targets;
     constexpr int kSpheres = 1500;
     for (int i = 0; i < kSpheres; ++i) {
         const double f = static_cast<double>(i) / kSpheres;
@@ -801,7 +801,7 @@ TEST(overlapping_spheres_culled_give_the_linear_scans_answers) {
         const double radius = 0.9 * (1 - 0.93 * f);
         const Vec3 c{1.6 * (1 - f) * std::cos(angle), 1 + 0.4 * std::sin(3 * angle) * (1 - f),
                      1.6 * (1 - f) * std::sin(angle)};
-        const int copies = i % 10 == 0 ? 2 : 1;  // a tie the file order must break
+        const int copies = i % 10 == 0 ? 2 : 1;
         for (int k = 0; k < copies; ++k)
             text << "1 " << radius << ' ' << c.x << ' ' << c.y << ' ' << c.z << surface;
         if (i % 50 == 0)
@@ -809,6 +809,14 @@ TEST(overlapping_spheres_culled_give_the_linear_scans_answers) {
         targets.push_back(c);
         targets.push_back(c + random.unit_vector() * radius);
     }
+    return text.str();
+}
+
+TEST(overlapping_spheres_culled_give_the_linear_scans_answers) {
+    Random random(404);
+    std::ostringstream text;
+    std::vector<Vec3> targets;
+    text << rt_test::kTestViewer << spiral_of_spheres(random, targets);
     const Scene scene = parse_scene(text.str());
     CHECK(scene.index->culls_spheres());
     CHECK_EQ(disagreements(scene, random, 6000, targets), 0);
@@ -1024,6 +1032,47 @@ TEST(a_lone_mesh_is_asked_directly_and_answers_as_the_scan) {
         CHECK(!index.any(away, {1e-9, 100}, nullptr, &tests));
         CHECK_EQ(tests, std::uint64_t{(on_floor ? 1u : 0u) + (framed ? 0u : 1u)});
     }
+}
+
+// Meshes among other objects (14 flat and 16 smooth, one in a frame, overlapping spheres, a
+// polygon and one another) are walked with the ray the object hierarchy's walk prepared
+// (ObjectIndex, hands_on_ray): the nearest hits and the shadows must be the linear scan's,
+// with half the rays aimed at the meshes. Only where a mesh is reached through the walk is
+// the ray handed on: not for a lone mesh, nor in a scene without one.
+TEST(meshes_among_objects_walked_with_the_object_walks_ray_answer_as_the_scan) {
+    Random random(405);
+    for (int variant = 0; variant < 2; ++variant) {
+        std::string text = kTestViewer;
+        text += "2 -3  0 1 0  100 0 1 0 0 1 1 0 1\n";
+        text += "7  4 0 0  1 0 0  0 1 0  0 0 1  " + random_mesh(random, 400, variant == 1);
+        // The frame's mesh is asked as before; these three are handed the walk's ray.
+        for (int m = 0; m < 3; ++m) text += random_mesh(random, 300, (m + variant) % 2 == 1);
+        for (int i = 0; i < 40; ++i) {
+            const Vec3 c = random.in_box(4);
+            text += "1 " + std::to_string(random.uniform(0.1, 1)) + " " + std::to_string(c.x) +
+                    " " + std::to_string(c.y) + " " + std::to_string(c.z) +
+                    "\n100 0 1 0 0 1 1 0 1\n";
+        }
+        text += "11 4  -5 -1 -5  5 -1 -5  5 -1 5  -5 -1 5\n100 0 0 1 0 1 1 0 1\n";
+        const Scene scene = parse_scene(text);
+        CHECK(scene.index->hands_on_ray());
+        CHECK_EQ(disagreements(scene, random, 4000, {{0, 0, 0}, {-3, 1, 0}, {3, 1, 2}, {4, 0, 0}}),
+                 0);
+    }
+    {
+        // Among spheres the index culls, its culling queries hand the ray on as well.
+        std::vector<Vec3> targets;
+        const std::string text = kTestViewer + spiral_of_spheres(random, targets) +
+                                 random_mesh(random, 300, false) + random_mesh(random, 300, true);
+        for (int i = 0; i < 200; ++i) targets.push_back(random.in_box(2));
+        const Scene scene = parse_scene(text);
+        CHECK(scene.index->hands_on_ray() && scene.index->culls_spheres());
+        CHECK_EQ(disagreements(scene, random, 4000, targets), 0);
+    }
+    // Nothing to hand the ray to: spheres only, or a lone mesh (asked without a walk).
+    CHECK(!parse_scene(kTestViewer + std::string("1 1 0 0 0\n100 1 0 0 0 1 1 0 1\n"))
+               .index->hands_on_ray());
+    CHECK(!parse_scene(kTestViewer + random_mesh(random, 50, false)).index->hands_on_ray());
 }
 
 TEST(many_parts_marks_meshes_and_composites_through_frames) {

@@ -329,8 +329,118 @@ TEST(packed_mesh_leaves_find_the_scans_hit_to_the_bit) {
                                  fast.part != slow.part)))
                 ++failures;
             if (mesh_core::any(core, ray, range) != b) ++failures;
+            // Given the ray as a walk above would have prepared it (the object hierarchy's,
+            // ObjectIndex), the mesh answers the same.
+            const WideRay prepared(ray, range.t_min);
+            if (prepared.usable()) {
+                Hit handed;
+                const bool c = mesh_core::closest(core, ray, range, handed, &prepared);
+                if (c != a || (c && (std::bit_cast<std::uint64_t>(handed.t) !=
+                                         std::bit_cast<std::uint64_t>(fast.t) ||
+                                     handed.part != fast.part)))
+                    ++failures;
+                if (mesh_core::any(core, ray, range, &prepared) != b) ++failures;
+            }
         }
         CHECK_EQ(failures, 0);
         CHECK(hits > 1000);
+    }
+}
+
+namespace {
+
+// The leaves a walk visits, in order, as (first, count) pairs, and the prepared ray each was
+// told of (null or not).
+struct Visits {
+    std::vector<std::uint32_t> leaves;
+    int told = 0, untold = 0;
+
+    void visit(std::uint32_t first, std::uint32_t count, const WideRay* walked) {
+        leaves.push_back(first);
+        leaves.push_back(count);
+        ++(walked != nullptr ? told : untold);
+    }
+};
+
+}  // namespace
+
+// A walk handed the ray prepared for it (Bvh::closest_leaves' `prepared`: a mesh's walk below
+// the object hierarchy's) visits exactly the leaves, in exactly the order, that it visits
+// preparing the ray itself; and a walk tells each leaf the ray it prepared, which is that
+// same ray: handed on to a second walk, it visits the same leaves again.
+TEST(a_walk_handed_its_prepared_ray_visits_what_it_would_visit_preparing_it) {
+    Random random(31);
+    for (const double scale : {1e-30, 1.0, 1e25}) {
+        std::vector<Bounds> boxes = random_boxes(random, 2000, 10, 0.7);
+        for (Bounds& b : boxes) b = {scaled(b.min, scale), scaled(b.max, scale)};
+        const Bvh bvh(boxes);
+        int differ = 0, handed = 0, told_on = 0;
+        for (int r = 0; r < 1500; ++r) {
+            Vec3 origin = scaled(random.in_box(12), scale);
+            if (r % 4 == 0) origin = boxes[random.next() % boxes.size()].min;
+            const Ray ray{origin, awkward_direction(random, r)};
+            const double t_min = r % 3 == 0 ? 0 : random.uniform(0, 5) * scale;
+            // A t_max that falls as leaves are visited, as a nearest hit's does.
+            const double start = r % 2 ? kInfinity : random.uniform(5, 20) * scale;
+            const auto walk = [&](const WideRay* prepared, bool nearest, Visits& v) {
+                double t_max = start;
+                int step = 0;
+                const auto leaf = [&](std::uint32_t first, std::uint32_t count, auto,
+                                      const WideRay* walked) {
+                    v.visit(first, count, walked);
+                    if (++step % 3 == 0) t_max = t_max * 0.9;
+                    return !nearest && step == 7;
+                };
+                if (nearest) {
+                    if (prepared != nullptr)
+                        bvh.closest_leaves(ray, t_min, t_max, leaf, prepared);
+                    else
+                        bvh.closest_leaves(ray, t_min, t_max, leaf);
+                } else {
+                    if (prepared != nullptr)
+                        bvh.any_leaves(ray, t_min, t_max, leaf, prepared);
+                    else
+                        bvh.any_leaves(ray, t_min, t_max, leaf);
+                }
+            };
+            const WideRay prepared(ray, t_min);
+            for (const bool nearest : {true, false}) {
+                Visits alone, given;
+                walk(nullptr, nearest, alone);
+                if (prepared.usable()) {
+                    walk(&prepared, nearest, given);
+                    ++handed;
+                    // Every leaf is told a prepared ray, and none where the ray is unusable.
+                    if (given.leaves != alone.leaves || alone.untold != 0) ++differ;
+                } else if (alone.told != 0) {
+                    ++differ;
+                }
+            }
+            // The ray the walk tells its leaves is the one it would prepare: a second walk,
+            // given it at the first leaf, visits what a walk preparing its own does.
+            bool checked = false;
+            double t_max = start;
+            bvh.closest_leaves(
+                ray, t_min, t_max, [&](std::uint32_t, std::uint32_t, auto, const WideRay* walked) {
+                    if (checked || walked == nullptr) return;
+                    checked = true;
+                    Visits again, fresh;
+                    double a = start, b = start;
+                    bvh.closest_leaves(
+                        ray, t_min, a,
+                        [&](std::uint32_t f, std::uint32_t c, auto, const WideRay* w) {
+                            again.visit(f, c, w);
+                        },
+                        walked);
+                    bvh.closest_leaves(ray, t_min, b,
+                                       [&](std::uint32_t f, std::uint32_t c, auto,
+                                           const WideRay* w) { fresh.visit(f, c, w); });
+                    if (again.leaves != fresh.leaves) ++differ;
+                });
+            if (checked) ++told_on;
+        }
+        CHECK_EQ(differ, 0);
+        CHECK(handed > 2000);
+        CHECK(told_on > 300);
     }
 }

@@ -8,6 +8,7 @@
 #include <bit>
 #include <cfloat>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <optional>
@@ -224,12 +225,19 @@ class WideRay {
 
 // Calls leaf(first, count), telling it, where it takes a third argument, whether the walk
 // calling it is compiled for AVX2 (as std::bool_constant), so that a leaf's own vector code
-// inlined there can use that too (sign_bits).
+// inlined there can use that too (sign_bits), and where it takes a fourth, the ray as the
+// walk prepared it for the float box test (nullptr where the walk tests boxes in double), so
+// that a primitive with a hierarchy of its own can walk that with it rather than prepare it
+// again.
 template <bool Avx2, class Leaf>
 [[gnu::always_inline]] inline decltype(auto) visit_leaf(Leaf& leaf, std::uint32_t first,
-                                                        std::uint32_t count) {
-    if constexpr (std::is_invocable_v<Leaf&, std::uint32_t, std::uint32_t,
-                                      std::bool_constant<Avx2>>)
+                                                        std::uint32_t count,
+                                                        const WideRay* prepared) {
+    if constexpr (std::is_invocable_v<Leaf&, std::uint32_t, std::uint32_t, std::bool_constant<Avx2>,
+                                      const WideRay*>)
+        return leaf(first, count, std::bool_constant<Avx2>{}, prepared);
+    else if constexpr (std::is_invocable_v<Leaf&, std::uint32_t, std::uint32_t,
+                                           std::bool_constant<Avx2>>)
         return leaf(first, count, std::bool_constant<Avx2>{});
     else
         return leaf(first, count);
@@ -318,20 +326,28 @@ class Bvh {
     template <BoxTest Test = BoxTest::simd, class Visit>
     bool any(const Ray& ray, double t_min, double t_max, Visit&& visit) const;
     // As closest and any, a leaf at a time: leaf(first, count) for the primitives at
-    // [first, first + count) in leaf order; for any, leaf returns true to stop.
-    template <BoxTest Test = BoxTest::simd, class Leaf>
-    void closest_leaves(const Ray& ray, double t_min, double& t_max, Leaf&& leaf) const {
+    // [first, first + count) in leaf order; for any, leaf returns true to stop. A leaf may
+    // take two more arguments (visit_leaf). `prepared`, where given, must be
+    // WideRay(ray, t_min) and usable: the walk then copies it rather than prepare the ray
+    // again (a mesh's walk under the object hierarchy's, which prepared the same ray).
+    // (Prepared: const WideRay*, or std::nullptr_t where the caller has none, so that the walk
+    // is compiled without the choice.)
+    template <BoxTest Test = BoxTest::simd, class Leaf, class Prepared = std::nullptr_t>
+    void closest_leaves(const Ray& ray, double t_min, double& t_max, Leaf&& leaf,
+                        Prepared prepared = nullptr) const {
         walk<Test, true>(
             ray, t_min, t_max,
-            [&](std::uint32_t first, std::uint32_t count, auto avx2)
+            [&](std::uint32_t first, std::uint32_t count, auto avx2, const WideRay* walked)
                 __attribute__((always_inline)) {
-                    visit_leaf<decltype(avx2)::value>(leaf, first, count);
+                    visit_leaf<decltype(avx2)::value>(leaf, first, count, walked);
                     return false;
-                });
+                },
+            prepared);
     }
-    template <BoxTest Test = BoxTest::simd, class Leaf>
-    bool any_leaves(const Ray& ray, double t_min, double t_max, Leaf&& leaf) const {
-        return walk<Test, false>(ray, t_min, t_max, leaf);
+    template <BoxTest Test = BoxTest::simd, class Leaf, class Prepared = std::nullptr_t>
+    bool any_leaves(const Ray& ray, double t_min, double t_max, Leaf&& leaf,
+                    Prepared prepared = nullptr) const {
+        return walk<Test, false>(ray, t_min, t_max, leaf, prepared);
     }
 
   private:
@@ -350,24 +366,25 @@ class Bvh {
 
     // Nearest: children entered are taken nearest first (for closest); otherwise in any order
     // (for any, which stops at the first blocker wherever it lies).
-    template <BoxTest Test, bool Nearest, class Leaf>
-    bool walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) const;
+    template <BoxTest Test, bool Nearest, class Leaf, class Prepared = std::nullptr_t>
+    bool walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf,
+              Prepared prepared = nullptr) const;
     // A tree that is one node of at most this many children is tested in double, without
     // the stack (see walk). With more, the float test and the nearest-first order pay
     // (mirror-49, 49 spheres in one node of eight leaves: 1.06 of the time in double).
     static constexpr int kDoubleTestedRoot = 4;
     // The walk below the root's special case, with the box test Test (not simd). Inlined
     // into walk, and into walk_avx2 where it is compiled for AVX2 (and told so by Avx2).
-    template <BoxTest Test, bool Nearest, bool Avx2 = false, class Leaf>
+    template <BoxTest Test, bool Nearest, bool Avx2 = false, class Leaf, class Prepared>
     [[gnu::always_inline]] inline bool walk_nodes(const Ray& ray, double t_min, const double& t_max,
-                                                  Leaf&& leaf) const;
+                                                  Leaf&& leaf, Prepared prepared) const;
 #if RT_AVX2_PATH
     // The walk with eight lanes at once, compiled for AVX2 (taken only where the processor
     // has it): one instruction per operation on all eight, where the portable code needs two.
-    template <bool Nearest, class Leaf>
+    template <bool Nearest, class Leaf, class Prepared>
     [[gnu::target("avx2")]] bool walk_avx2(const Ray& ray, double t_min, const double& t_max,
-                                           Leaf&& leaf) const {
-        return walk_nodes<BoxTest::eight, Nearest, true>(ray, t_min, t_max, leaf);
+                                           Leaf&& leaf, Prepared prepared) const {
+        return walk_nodes<BoxTest::eight, Nearest, true>(ray, t_min, t_max, leaf, prepared);
     }
 #endif
 
@@ -383,8 +400,9 @@ class Bvh {
 // any, in lane order, the last taken at once as the pop would take it), and wait; a waiting
 // child is dropped without another test once a hit nearer than its entry has been found.
 // leaf(first, count) returns true to stop; walk returns whether one did.
-template <Bvh::BoxTest Test, bool Nearest, class Leaf>
-bool Bvh::walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) const {
+template <Bvh::BoxTest Test, bool Nearest, class Leaf, class Prepared>
+bool Bvh::walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf,
+               Prepared prepared) const {
     if (wide_.empty()) return false;
     // A tree of one node of a few children (a scene of a few objects, or one mesh) takes the
     // double test: for a single node, preparing the ray for the float test costs more than
@@ -397,28 +415,40 @@ bool Bvh::walk(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) c
         for (int i = 0; i < node.size; ++i) {
             double t_enter = 0;
             if (box_ray.enters(node.bound(i).data(), t_min, t_max, t_enter) &&
-                visit_leaf<false>(leaf, node.child[i], node.count[i]))
+                visit_leaf<false>(leaf, node.child[i], node.count[i], nullptr))
                 return true;
         }
         return false;
     }
     if constexpr (Test == BoxTest::simd || Test == BoxTest::eight) {
 #if RT_AVX2_PATH
-        if (kHasAvx2) return walk_avx2<Nearest>(ray, t_min, t_max, leaf);
+        if (kHasAvx2) return walk_avx2<Nearest>(ray, t_min, t_max, leaf, prepared);
 #endif
     }
     constexpr BoxTest kTest = Test == BoxTest::simd ? BoxTest::four : Test;
-    return walk_nodes<kTest, Nearest>(ray, t_min, t_max, leaf);
+    return walk_nodes<kTest, Nearest>(ray, t_min, t_max, leaf, prepared);
 }
 
-template <Bvh::BoxTest Test, bool Nearest, bool Avx2, class Leaf>
-bool Bvh::walk_nodes(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf) const {
+template <Bvh::BoxTest Test, bool Nearest, bool Avx2, class Leaf, class Prepared>
+bool Bvh::walk_nodes(const Ray& ray, double t_min, const double& t_max, Leaf&& leaf,
+                     Prepared prepared) const {
+    static_assert(std::is_same_v<Prepared, std::nullptr_t> ||
+                  std::is_same_v<Prepared, const WideRay*>);
     bool exact = Test == BoxTest::exact;
     std::optional<WideRay> wide_ray;
     if (!exact) {
-        wide_ray.emplace(ray, t_min);
+        // A copy: a local the leaves' calls cannot be taken to change stays in registers.
+        if constexpr (std::is_same_v<Prepared, const WideRay*>) {
+            if (prepared != nullptr)
+                wide_ray.emplace(*prepared);
+            else
+                wide_ray.emplace(ray, t_min);
+        } else {
+            wide_ray.emplace(ray, t_min);
+        }
         exact = !wide_ray->usable();
     }
+    const WideRay* const walked = exact ? nullptr : &*wide_ray;
     std::optional<BoxRay> box_ray;  // only for the double test
     if (exact) box_ray.emplace(ray);
     struct Pending {
@@ -453,7 +483,7 @@ bool Bvh::walk_nodes(const Ray& ray, double t_min, const double& t_max, Leaf&& l
                 current = node.child[i];
                 continue;
             }
-            if (visit_leaf<Avx2>(leaf, node.child[i], node.count[i])) return true;
+            if (visit_leaf<Avx2>(leaf, node.child[i], node.count[i], walked)) return true;
         } else if (lanes != 0 && Nearest) {
             // Push the children entered but the nearest, farthest first (insertion by entry
             // distance), and go on into the nearest at once: it would be popped next.
@@ -474,7 +504,8 @@ bool Bvh::walk_nodes(const Ray& ray, double t_min, const double& t_max, Leaf&& l
                 current = node.child[nearest];
                 continue;
             }
-            if (visit_leaf<Avx2>(leaf, node.child[nearest], node.count[nearest])) return true;
+            if (visit_leaf<Avx2>(leaf, node.child[nearest], node.count[nearest], walked))
+                return true;
         } else if (lanes != 0) {
             // In any order: the children entered are pushed in lane order but the last,
             // which would be popped next, and that one is taken at once (t_max does not
@@ -489,7 +520,7 @@ bool Bvh::walk_nodes(const Ray& ray, double t_min, const double& t_max, Leaf&& l
                     current = node.child[last];
                     continue;
                 }
-                if (visit_leaf<Avx2>(leaf, node.child[last], node.count[last])) return true;
+                if (visit_leaf<Avx2>(leaf, node.child[last], node.count[last], walked)) return true;
             }
         }
         // Pop until a wide node the ray enters before the best hit so far (t_max may have
@@ -502,7 +533,7 @@ bool Bvh::walk_nodes(const Ray& ray, double t_min, const double& t_max, Leaf&& l
                 current = next.child;
                 break;
             }
-            if (visit_leaf<Avx2>(leaf, next.child, next.count)) return true;
+            if (visit_leaf<Avx2>(leaf, next.child, next.count, walked)) return true;
         }
     }
 }

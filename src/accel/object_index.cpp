@@ -43,15 +43,20 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
     });
     std::vector<std::uint32_t> bounded;
     std::vector<Entry> unbounded;
-    std::size_t spheres = 0;
+    std::size_t spheres = 0, takers = 0;
     bounded.reserve(objects.size());
     for (std::uint32_t i = 0; i < objects.size(); ++i)
         if (finite[i] != 0) {
             bounded.push_back(i);
             if (objects[i].shape.functions->sphere != nullptr) ++spheres;
+            if (objects[i].shape.functions->intersect_prepared != nullptr) ++takers;
         } else {
-            unbounded.push_back(entry(objects[i], i));
+            unbounded.push_back(entry(objects[i], i, false));
         }
+    // The walk hands its ray on where an object it reaches takes it; a lone object (one
+    // bounded) is asked without the walk. Every entry then holds the call the queries make:
+    // the prepared one exactly where they are compiled to hand the ray on.
+    if (bounded.size() > 1 && takers > 0) queries_ |= kHandsOn;
     finite = {};
     struct Source {
         std::span<const Object> objects;
@@ -82,7 +87,7 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
     entries_.resize(bounded_count_);
     parallel_parts(bounded_count_, threads, kPart, [&](std::size_t begin, std::size_t end) {
         for (std::size_t j = begin; j < end; ++j)
-            entries_[place[j]] = entry(objects[bounded[j]], bounded[j]);
+            entries_[place[j]] = entry(objects[bounded[j]], bounded[j], hands_on_ray());
     });
     entries_.insert(entries_.end(), unbounded.begin(), unbounded.end());
     if (bounded_count_ == 1) lone_outline_ = objects[bounded[0]].shape.functions->outline;
@@ -90,6 +95,7 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
         cull_ = SphereCull(bounded_count_);
         for (std::size_t i = 0; i < bounded_count_; ++i)
             if (entries_[i].sphere) cull_.set(i, entries_[i].sphere_parameters());
+        queries_ |= kCulled;
     }
 }
 
@@ -129,18 +135,25 @@ bool ObjectIndex::cull_pays() const {
     return expected(false) >= kCulledTests && expected(true) >= kCulledTests;
 }
 
-ObjectIndex::Entry ObjectIndex::entry(const Object& object, std::uint32_t index) {
+ObjectIndex::Entry ObjectIndex::entry(const Object& object, std::uint32_t index, bool hands_on) {
     const Shape& shape = object.shape;
     Entry e{};
     e.object = index;
     e.many_parts = shape.many_parts();
     e.sphere = shape.functions->sphere != nullptr;
+    e.prepared = hands_on && !e.sphere && shape.functions->intersect_prepared != nullptr;
     if (e.sphere) {
         const SphereParameters s = shape.functions->sphere(shape.data.get());
         e.test.sphere[0] = s.centre.x;
         e.test.sphere[1] = s.centre.y;
         e.test.sphere[2] = s.centre.z;
         e.test.sphere[3] = s.radius_squared;
+    } else if (e.prepared) {
+        e.test.prepared_call = {shape.functions->intersect_prepared,
+                                shape.functions->intersect_any_prepared != nullptr
+                                    ? shape.functions->intersect_any_prepared
+                                    : shape.functions->intersect_prepared,
+                                shape.data.get()};
     } else {
         e.test.call = {shape.intersect_function(), shape.any_hit_function(), shape.data.get()};
     }
@@ -149,22 +162,54 @@ ObjectIndex::Entry ObjectIndex::entry(const Object& object, std::uint32_t index)
 
 // Inlined always, as the lambdas below that call them: in the walks, which are large, GCC
 // otherwise leaves them out of line (a call per object asked).
+template <bool HandsOn>
 [[gnu::always_inline]] inline bool ObjectIndex::hits(std::uint32_t i, const Ray& ray,
-                                                     Interval range, Hit& hit) const {
+                                                     Interval range, Hit& hit,
+                                                     const WideRay* walked) const {
     const Entry& e = entries_[i];
-    return e.sphere ? sphere_hit(e.sphere_parameters(), ray, range, hit)
-                    : e.test.call.intersect(e.test.call.data, ray, range, hit);
+    if (e.sphere) return sphere_hit(e.sphere_parameters(), ray, range, hit);
+    if (HandsOn && e.prepared)
+        return e.test.prepared_call.intersect(e.test.prepared_call.data, ray, range, hit, walked);
+    return e.test.call.intersect(e.test.call.data, ray, range, hit);
 }
 
+template <bool HandsOn>
 [[gnu::always_inline]] inline bool ObjectIndex::blocks(std::uint32_t i, const Ray& ray,
-                                                       Interval range, Hit& scratch) const {
+                                                       Interval range, Hit& scratch,
+                                                       const WideRay* walked) const {
     const Entry& e = entries_[i];
-    if (!e.sphere) return e.test.call.intersect_any(e.test.call.data, ray, range, scratch);
+    if (!e.sphere) {
+        if (HandsOn && e.prepared)
+            return e.test.prepared_call.intersect_any(e.test.prepared_call.data, ray, range,
+                                                      scratch, walked);
+        return e.test.call.intersect_any(e.test.call.data, ray, range, scratch);
+    }
     double t = 0;
     return sphere_crossing(e.sphere_parameters(), ray, range, t);
 }
 
-template <bool Culled>
+namespace {
+
+// The leaf(first, count, avx2, walked) of a walk over the objects, as the walk is to call it:
+// told the ray the walk prepared where HandsOn, and otherwise not, so that the walk keeps
+// nothing for it and the leaf is told nullptr.
+template <bool HandsOn, class Leaf>
+auto leaf_taking(Leaf& leaf) {
+    if constexpr (HandsOn)
+        return [&leaf](std::uint32_t first, std::uint32_t count, auto avx2, const WideRay* walked)
+            __attribute__((always_inline)) {
+            return leaf(first, count, avx2, walked);
+        };
+    else
+        return [&leaf](std::uint32_t first, std::uint32_t count, auto avx2)
+            __attribute__((always_inline)) {
+            return leaf(first, count, avx2, nullptr);
+        };
+}
+
+}  // namespace
+
+template <bool Culled, bool HandsOn>
 bool ObjectIndex::closest_in(const Ray& ray, Interval range, Found& found, std::uint64_t* tests,
                              bool bounded) const {
     double best = range.t_max;
@@ -176,45 +221,54 @@ bool ObjectIndex::closest_in(const Ray& ray, Interval range, Found& found, std::
     // asked a little past the best, and the answer is judged here: nearer wins, and at the
     // same distance the object earlier in the file.
     const auto limit = [&] { return best_object == kNone ? best : best + kTieSlack * best; };
-    auto ask = [&](std::uint32_t i) __attribute__((always_inline)) {
+    auto ask = [&](std::uint32_t i, const WideRay* walked) __attribute__((always_inline)) {
         Hit hit;
-        if (!hits(i, ray, {range.t_min, limit()}, hit)) return;
+        if (!hits<HandsOn>(i, ray, {range.t_min, limit()}, hit, walked)) return;
         const std::uint32_t object = entries_[i].object;
         if (!(hit.t < best || (hit.t == best && object < best_object))) return;
         best = hit.t;
         best_object = object;
         found = {object, hit};
     };
-    auto test = [&](std::uint32_t i) __attribute__((always_inline)) {
+    // (walked defaults to none, so that the walk can take test itself as its visit: through a
+    // lambda around it, each object asked cost a load more.)
+    auto test = [&](std::uint32_t i, const WideRay* walked = nullptr)
+        __attribute__((always_inline)) {
         ++asked;
-        ask(i);
+        ask(i, walked);
     };
     // The unbounded objects first: a floor under everything prunes much of the tree.
-    for (auto i = static_cast<std::uint32_t>(bounded_count_); i < entries_.size(); ++i) test(i);
+    for (auto i = static_cast<std::uint32_t>(bounded_count_); i < entries_.size(); ++i)
+        test(i, nullptr);
     if (!bounded) return best_object != kNone;
     if (lone_hierarchy()) {
-        test(0);
+        test(0, nullptr);
     } else if constexpr (Culled) {
         SphereCull::Ray8 cull_ray{};
         bool prepared = false;  // only once a large leaf is reached
+        auto leaf = [&](std::uint32_t first, std::uint32_t count, auto avx2, const WideRay* walked)
+            __attribute__((always_inline)) {
+            if (count < kCulledLeaf) {
+                for (std::uint32_t i = first; i < first + count; ++i) test(i, walked);
+                return;
+            }
+            if (!prepared) cull_ray = SphereCull::prepare(ray, range.t_min);
+            prepared = true;
+            // Every sphere is counted as asked, the ones the cull drops too: the
+            // counts are those of the exact tests alone.
+            asked += count;
+            // The limit only falls as the leaf's spheres are asked: the cull's holds.
+            for (unsigned keep = cull_.keep<decltype(avx2)::value>(cull_ray, first, count, limit());
+                 keep != 0; keep &= keep - 1)
+                ask(first + static_cast<std::uint32_t>(std::countr_zero(keep)), walked);
+        };
+        bvh_.closest_leaves(ray, range.t_min, best, leaf_taking<HandsOn>(leaf));
+    } else if constexpr (HandsOn) {
         bvh_.closest_leaves(
             ray, range.t_min, best,
-            [&](std::uint32_t first, std::uint32_t count, auto avx2)
+            [&](std::uint32_t first, std::uint32_t count, auto, const WideRay* walked)
                 __attribute__((always_inline)) {
-                    if (count < kCulledLeaf) {
-                        for (std::uint32_t i = first; i < first + count; ++i) test(i);
-                        return;
-                    }
-                    if (!prepared) cull_ray = SphereCull::prepare(ray, range.t_min);
-                    prepared = true;
-                    // Every sphere is counted as asked, the ones the cull drops too: the
-                    // counts are those of the exact tests alone.
-                    asked += count;
-                    // The limit only falls as the leaf's spheres are asked: the cull's holds.
-                    for (unsigned keep =
-                             cull_.keep<decltype(avx2)::value>(cull_ray, first, count, limit());
-                         keep != 0; keep &= keep - 1)
-                        ask(first + static_cast<std::uint32_t>(std::countr_zero(keep)));
+                    for (std::uint32_t i = first; i < first + count; ++i) test(i, walked);
                 });
     } else {
         bvh_.closest(ray, range.t_min, best, test);
@@ -222,7 +276,7 @@ bool ObjectIndex::closest_in(const Ray& ray, Interval range, Found& found, std::
     return best_object != kNone;
 }
 
-template <bool Culled>
+template <bool Culled, bool HandsOn>
 bool ObjectIndex::any_in(const Ray& ray, Interval range, Blocker* last,
                          std::uint64_t* tests) const {
     Hit hit;
@@ -235,53 +289,98 @@ bool ObjectIndex::any_in(const Ray& ray, Interval range, Blocker* last,
     std::uint32_t tried = kNone;
     // Whether entry i blocks, where `maybe` (the cull's verdict) allows it; counted as asked
     // either way, but not the last blocker again.
-    auto stops_if = [&](std::uint32_t i, bool maybe) __attribute__((always_inline)) {
+    auto stops_if = [&](std::uint32_t i, bool maybe, const WideRay* walked)
+        __attribute__((always_inline)) {
         if (i == tried) return false;
         ++asked;
-        if (!maybe || !blocks(i, ray, range, hit)) return false;
+        if (!maybe || !blocks<HandsOn>(i, ray, range, hit, walked)) return false;
         if (last != nullptr) last->entry = i;
         return true;
     };
-    auto stops = [&](std::uint32_t i) __attribute__((always_inline)) { return stops_if(i, true); };
+    auto stops = [&](std::uint32_t i, const WideRay* walked = nullptr)
+        __attribute__((always_inline)) {
+        return stops_if(i, true, walked);
+    };
     if (last != nullptr && last->entry < entries_.size() && !entries_[last->entry].many_parts) {
-        if (stops(last->entry)) return true;
+        if (stops(last->entry, nullptr)) return true;
         tried = last->entry;
     }
     for (auto i = static_cast<std::uint32_t>(bounded_count_); i < entries_.size(); ++i)
-        if (stops(i)) return true;
+        if (stops(i, nullptr)) return true;
     // A hierarchy over one object that was just tried (a sphere on a floor, say; a mesh is
     // not tried ahead) has nothing more to offer: its walk would prepare the ray and test the
     // box only to skip it.
     if (bounded_count_ == 1 && tried == 0) return false;
-    if (lone_hierarchy()) return stops(0);
+    if (lone_hierarchy()) return stops(0, nullptr);
     if constexpr (Culled) {
         SphereCull::Ray8 cull_ray{};
         bool prepared = false;
+        auto leaf = [&](std::uint32_t first, std::uint32_t count, auto avx2, const WideRay* walked)
+            __attribute__((always_inline)) {
+            unsigned keep = (1u << count) - 1;
+            if (count >= kCulledLeaf) {
+                if (!prepared) cull_ray = SphereCull::prepare(ray, range.t_min);
+                prepared = true;
+                keep = cull_.keep<decltype(avx2)::value>(cull_ray, first, count, range.t_max);
+            }
+            for (std::uint32_t k = 0; k < count; ++k)
+                if (stops_if(first + k, (keep >> k & 1) != 0, walked)) return true;
+            return false;
+        };
+        return bvh_.any_leaves(ray, range.t_min, range.t_max, leaf_taking<HandsOn>(leaf));
+    } else if constexpr (HandsOn) {
         return bvh_.any_leaves(
             ray, range.t_min, range.t_max,
-            [&](std::uint32_t first, std::uint32_t count,
-                auto avx2) __attribute__((always_inline)) {
-                unsigned keep = (1u << count) - 1;
-                if (count >= kCulledLeaf) {
-                    if (!prepared) cull_ray = SphereCull::prepare(ray, range.t_min);
-                    prepared = true;
-                    keep = cull_.keep<decltype(avx2)::value>(cull_ray, first, count, range.t_max);
-                }
-                for (std::uint32_t k = 0; k < count; ++k)
-                    if (stops_if(first + k, (keep >> k & 1) != 0)) return true;
-                return false;
-            });
+            [&](std::uint32_t first, std::uint32_t count, auto, const WideRay* walked)
+                __attribute__((always_inline)) {
+                    for (std::uint32_t i = first; i < first + count; ++i)
+                        if (stops(i, walked)) return true;
+                    return false;
+                });
     } else {
         return bvh_.any(ray, range.t_min, range.t_max, stops);
     }
 }
 
-template bool ObjectIndex::closest_in<false>(const Ray&, Interval, Found&, std::uint64_t*,
-                                             bool) const;
-template bool ObjectIndex::closest_in<true>(const Ray&, Interval, Found&, std::uint64_t*,
-                                            bool) const;
-template bool ObjectIndex::any_in<false>(const Ray&, Interval, Blocker*, std::uint64_t*) const;
-template bool ObjectIndex::any_in<true>(const Ray&, Interval, Blocker*, std::uint64_t*) const;
+template bool ObjectIndex::closest_in<false, false>(const Ray&, Interval, Found&, std::uint64_t*,
+                                                    bool) const;
+template bool ObjectIndex::any_in<false, false>(const Ray&, Interval, Blocker*,
+                                                std::uint64_t*) const;
+template bool ObjectIndex::closest_in<false, true>(const Ray&, Interval, Found&, std::uint64_t*,
+                                                   bool) const;
+template bool ObjectIndex::any_in<false, true>(const Ray&, Interval, Blocker*,
+                                               std::uint64_t*) const;
+template bool ObjectIndex::closest_in<true, false>(const Ray&, Interval, Found&, std::uint64_t*,
+                                                   bool) const;
+template bool ObjectIndex::any_in<true, false>(const Ray&, Interval, Blocker*,
+                                               std::uint64_t*) const;
+template bool ObjectIndex::closest_in<true, true>(const Ray&, Interval, Found&, std::uint64_t*,
+                                                  bool) const;
+template bool ObjectIndex::any_in<true, true>(const Ray&, Interval, Blocker*, std::uint64_t*) const;
+
+bool ObjectIndex::closest_other(const Ray& ray, Interval range, Found& found,
+                                std::uint64_t* tests) const {
+    switch (queries_) {
+        case kCulled:
+            return closest_in<true, false>(ray, range, found, tests);
+        case kHandsOn:
+            return closest_in<false, true>(ray, range, found, tests);
+        default:
+            return closest_in<true, true>(ray, range, found, tests);
+    }
+}
+
+bool ObjectIndex::any_other(const Ray& ray, Interval range, Blocker* last,
+                            std::uint64_t* tests) const {
+    switch (queries_) {
+        case kCulled:
+            return any_in<true, false>(ray, range, last, tests);
+        case kHandsOn:
+            return any_in<false, true>(ray, range, last, tests);
+        default:
+            return any_in<true, true>(ray, range, last, tests);
+    }
+}
 
 void Scene::build_index(int threads) {
     index = std::make_shared<const ObjectIndex>(objects, threads);

@@ -34,6 +34,9 @@ class ObjectIndex {
     // Whether the hierarchy's spheres are culled eight at a time (SphereCull).
     bool culls_spheres() const { return !cull_.empty(); }
     std::size_t bounded_count() const { return bounded_count_; }
+    // Whether the walk hands the ray it prepared on to the objects that take it (a mesh
+    // among other objects: Entry::prepared).
+    bool hands_on_ray() const { return (queries_ & kHandsOn) != 0; }
     std::size_t unbounded_count() const { return entries_.size() - bounded_count_; }
 
     // The nearest hit in range, exactly as testing every object in file order finds it: the
@@ -42,14 +45,16 @@ class ObjectIndex {
     // With `tests`, the number of objects asked is added to it.
     bool closest(const Ray& ray, Interval range, Found& found,
                  std::uint64_t* tests = nullptr) const {
-        return culls_spheres() ? closest_in<true>(ray, range, found, tests)
-                               : closest_in<false>(ray, range, found, tests);
+        // The plain query first: most scenes' (and the one test of a byte), the rest out of
+        // line.
+        if (queries_ == kPlain) return closest_in<false, false>(ray, range, found, tests);
+        return closest_other(ray, range, found, tests);
     }
     // The same for a ray that crosses none of outline()'s boxes, so that no bounded object
     // can be hit: only the unbounded ones are asked.
     bool closest_unbounded(const Ray& ray, Interval range, Found& found,
                            std::uint64_t* tests = nullptr) const {
-        return closest_in<false>(ray, range, found, tests, false);
+        return closest_in<false, false>(ray, range, found, tests, false);
     }
     // Boxes that together hold every bounded object (Bvh::outline), at most `at_most` of
     // them (but at least the root's children); none where there is no bounded object.
@@ -68,8 +73,8 @@ class ObjectIndex {
     // tests; docs/performance.md).
     bool any(const Ray& ray, Interval range, Blocker* last = nullptr,
              std::uint64_t* tests = nullptr) const {
-        const bool blocked = culls_spheres() ? any_in<true>(ray, range, last, tests)
-                                             : any_in<false>(ray, range, last, tests);
+        const bool blocked = queries_ == kPlain ? any_in<false, false>(ray, range, last, tests)
+                                                : any_other(ray, range, last, tests);
         if (!blocked && last != nullptr && last->entry < entries_.size() &&
             !entries_[last->entry].sphere)
             last->entry = kNone;
@@ -92,10 +97,20 @@ class ObjectIndex {
                 IntersectFn* intersect_any;  // for shadow rays (Shape::any_hit_function)
                 const void* data;
             } call;
+            // For an object with a hierarchy of its own (a mesh), its functions that walk it
+            // with the ray this walk prepared (PrimitiveFunctions::intersect_prepared).
+            struct PreparedCall {
+                PreparedIntersectFn* intersect;
+                PreparedIntersectFn* intersect_any;
+                const void* data;
+            } prepared_call;
             double sphere[4];  // the centre's x, y and z, then the squared radius
         } test;
         std::uint32_t object;
-        bool sphere;  // which of test's two is there
+        bool sphere;  // which of test's three is there: the sphere,
+        // the prepared call (only in an index that hands its walk's ray on, whose queries
+        // all make it: hands_on_ray()), or else the call
+        bool prepared;
         // One test searches many parts (Shape::many_parts: a mesh, CSG, or a frame of one).
         bool many_parts;
 
@@ -116,19 +131,30 @@ class ObjectIndex {
     // spheres) took 1.10 of the time with it, spheres-10k (2) 1.03.
     static constexpr double kCulledTests = 16;
 
-    static Entry entry(const Object& object, std::uint32_t index);
+    // With hands_on, the object's prepared call where its row has one (Entry::prepared).
+    static Entry entry(const Object& object, std::uint32_t index, bool hands_on);
     // Whether a ray through the hierarchy asks at least kCulledTests spheres of its leaves
     // of kCulledLeaf objects or more (each such leaf's area over the root's, times its
     // spheres).
     bool cull_pays() const;
-    template <bool Culled>
+    // Culled: with cull_. HandsOn: the walk's prepared ray is handed on to the entries that
+    // take it (hands_on_ray()).
+    template <bool Culled, bool HandsOn>
     bool closest_in(const Ray& ray, Interval range, Found& found, std::uint64_t* tests,
                     bool bounded = true) const;
-    template <bool Culled>
+    template <bool Culled, bool HandsOn>
     bool any_in(const Ray& ray, Interval range, Blocker* last, std::uint64_t* tests) const;
-    // Whether entry i is hit in range (hit as intersect leaves it).
-    bool hits(std::uint32_t i, const Ray& ray, Interval range, Hit& hit) const;
-    bool blocks(std::uint32_t i, const Ray& ray, Interval range, Hit& scratch) const;
+    // closest_in and any_in for an index whose queries are not plain.
+    bool closest_other(const Ray& ray, Interval range, Found& found, std::uint64_t* tests) const;
+    bool any_other(const Ray& ray, Interval range, Blocker* last, std::uint64_t* tests) const;
+    // Whether entry i is hit in range (hit as intersect leaves it). `walked`: the ray as the
+    // walk prepared it, WideRay(ray, range.t_min), or nullptr; given to a prepared call.
+    template <bool HandsOn>
+    bool hits(std::uint32_t i, const Ray& ray, Interval range, Hit& hit,
+              const WideRay* walked) const;
+    template <bool HandsOn>
+    bool blocks(std::uint32_t i, const Ray& ray, Interval range, Hit& scratch,
+                const WideRay* walked) const;
 
     Bvh bvh_;
     // The bounded objects in leaf order, then the unbounded ones in file order. Allocated
@@ -147,6 +173,12 @@ class ObjectIndex {
     // scenes of spheres that overlap heavily, which the hierarchy cannot part, the render
     // took 0.73-0.94 of the time, the more overlap the less). Empty elsewhere.
     SphereCull cull_;
+    // Which closest_in and any_in the queries call: kCulled where the spheres are culled
+    // (culls_spheres), kHandsOn where an entry of the hierarchy takes the walk's prepared ray
+    // (Entry::prepared: a mesh among other objects); elsewhere the walk is not asked for it.
+    // One flag for both, read once per query.
+    static constexpr std::uint8_t kPlain = 0, kCulled = 1, kHandsOn = 2;
+    std::uint8_t queries_ = kPlain;
 };
 
 }  // namespace rt

@@ -43,12 +43,22 @@ ShapeData read(SceneReader& reader) {
     return std::make_shared<const Core>(std::move(mesh));
 }
 
-bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
-    return mesh_core::closest(*static_cast<const Core*>(shape), ray, range, hit);
+bool intersect_prepared(const void* shape, const Ray& ray, Interval range, Hit& hit,
+                        const WideRay* prepared) {
+    return mesh_core::closest(*static_cast<const Core*>(shape), ray, range, hit, prepared);
 }
 
-bool intersect_any(const void* shape, const Ray& ray, Interval range, Hit&) {
-    return mesh_core::any(*static_cast<const Core*>(shape), ray, range);
+bool intersect_any_prepared(const void* shape, const Ray& ray, Interval range, Hit&,
+                            const WideRay* prepared) {
+    return mesh_core::any(*static_cast<const Core*>(shape), ray, range, prepared);
+}
+
+bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
+    return intersect_prepared(shape, ray, range, hit, nullptr);
+}
+
+bool intersect_any(const void* shape, const Ray& ray, Interval range, Hit& hit) {
+    return intersect_any_prepared(shape, ray, range, hit, nullptr);
 }
 
 Vec3 normal(const void* shape, const Vec3&, const Hit& hit) {
@@ -66,6 +76,8 @@ extern const PrimitiveFunctions functions{.read = read,
                                           .bounds = bounds,
                                           .intersect_any = intersect_any,
                                           .many_parts = mesh_core::always_true,
-                                          .outline = mesh_core::core_outline};
+                                          .outline = mesh_core::core_outline,
+                                          .intersect_prepared = intersect_prepared,
+                                          .intersect_any_prepared = intersect_any_prepared};
 
 }  // namespace rt::mesh

@@ -62,47 +62,52 @@ void finish(Core& core, Triangles& triangles, int threads) {
                                t.flipped() ? 1u : 0u});
 }
 
-bool closest(const Core& m, const Ray& ray, Interval range, Hit& hit) {
+bool closest(const Core& m, const Ray& ray, Interval range, Hit& hit, const WideRay* prepared) {
     const TriangleRay triangle_ray(ray);
     double best = range.t_max;
     constexpr std::uint32_t kNone = ~std::uint32_t{0};
     std::uint32_t best_position = kNone, best_place = 0;
     // Of triangles hit at the same distance, the one written first wins, whatever order the
     // hierarchy visits them in.
-    m.bvh.closest_leaves(ray, range.t_min, best, [&](std::uint32_t first, std::uint32_t count) {
-        const PackedTriangle* leaf = m.packed.data() + first;
-        for (std::uint32_t i = 0; i < count; ++i) {
-            const PackedTriangle& tri = leaf[i];
-            double t = 0;
-            if (!triangle_ray.crosses(tri.vertex[0], tri.vertex[1], tri.vertex[2], t) ||
-                !(t > range.t_min))
-                continue;
-            if (t < best || (t == best && best_position != kNone && tri.place < best_place)) {
-                best = t;
-                best_place = tri.place;
-                best_position = first + i;
+    m.bvh.closest_leaves(
+        ray, range.t_min, best,
+        [&](std::uint32_t first, std::uint32_t count) {
+            const PackedTriangle* leaf = m.packed.data() + first;
+            for (std::uint32_t i = 0; i < count; ++i) {
+                const PackedTriangle& tri = leaf[i];
+                double t = 0;
+                if (!triangle_ray.crosses(tri.vertex[0], tri.vertex[1], tri.vertex[2], t) ||
+                    !(t > range.t_min))
+                    continue;
+                if (t < best || (t == best && best_position != kNone && tri.place < best_place)) {
+                    best = t;
+                    best_place = tri.place;
+                    best_position = first + i;
+                }
             }
-        }
-    });
+        },
+        prepared);
     if (best_position == kNone) return false;
     hit = {best, static_cast<int>(best_position)};
     return true;
 }
 
-bool any(const Core& m, const Ray& ray, Interval range) {
+bool any(const Core& m, const Ray& ray, Interval range, const WideRay* prepared) {
     const TriangleRay triangle_ray(ray);
-    return m.bvh.any_leaves(ray, range.t_min, range.t_max,
-                            [&](std::uint32_t first, std::uint32_t count) {
-                                const PackedTriangle* leaf = m.packed.data() + first;
-                                for (std::uint32_t i = 0; i < count; ++i) {
-                                    double t = 0;
-                                    if (triangle_ray.crosses(leaf[i].vertex[0], leaf[i].vertex[1],
-                                                             leaf[i].vertex[2], t) &&
-                                        range.contains(t))
-                                        return true;
-                                }
-                                return false;
-                            });
+    return m.bvh.any_leaves(
+        ray, range.t_min, range.t_max,
+        [&](std::uint32_t first, std::uint32_t count) {
+            const PackedTriangle* leaf = m.packed.data() + first;
+            for (std::uint32_t i = 0; i < count; ++i) {
+                double t = 0;
+                if (triangle_ray.crosses(leaf[i].vertex[0], leaf[i].vertex[1], leaf[i].vertex[2],
+                                         t) &&
+                    range.contains(t))
+                    return true;
+            }
+            return false;
+        },
+        prepared);
 }
 
 // From the packed copy, not the vertex list: the same doubles, and already in cache, where
@@ -163,12 +168,22 @@ namespace {
 const ShadedMesh& mesh_of(const void* shape) { return *static_cast<const ShadedMesh*>(shape); }
 }  // namespace
 
-bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
-    return closest(mesh_of(shape).core, ray, range, hit);
+bool intersect_prepared(const void* shape, const Ray& ray, Interval range, Hit& hit,
+                        const WideRay* prepared) {
+    return closest(mesh_of(shape).core, ray, range, hit, prepared);
 }
 
-bool intersect_any(const void* shape, const Ray& ray, Interval range, Hit&) {
-    return any(mesh_of(shape).core, ray, range);
+bool intersect_any_prepared(const void* shape, const Ray& ray, Interval range, Hit&,
+                            const WideRay* prepared) {
+    return any(mesh_of(shape).core, ray, range, prepared);
+}
+
+bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit) {
+    return intersect_prepared(shape, ray, range, hit, nullptr);
+}
+
+bool intersect_any(const void* shape, const Ray& ray, Interval range, Hit& hit) {
+    return intersect_any_prepared(shape, ray, range, hit, nullptr);
 }
 
 Vec3 normal(const void* shape, const Vec3&, const Hit& hit) {

@@ -118,9 +118,11 @@ template <class Next>
 std::size_t build(Core& core, long triangle_count, int threads, Next&& next);
 
 // The nearest triangle hit in range; of triangles at the same distance, the one written first.
-bool closest(const Core& core, const Ray& ray, Interval range, Hit& hit);
+// `prepared`, where given, is WideRay(ray, range.t_min), usable (Bvh::closest_leaves).
+bool closest(const Core& core, const Ray& ray, Interval range, Hit& hit,
+             const WideRay* prepared = nullptr);
 // Whether any triangle lies along the ray in range.
-bool any(const Core& core, const Ray& ray, Interval range);
+bool any(const Core& core, const Ray& ray, Interval range, const WideRay* prepared = nullptr);
 // The hit triangle's outward normal, (v1 - v0) x (v2 - v0) normalised in the written winding.
 Vec3 face(const Core& core, const Hit& hit);
 
@@ -144,6 +146,10 @@ struct ShadedMesh {
 namespace shaded {
 bool intersect(const void* shape, const Ray& ray, Interval range, Hit& hit);
 bool intersect_any(const void* shape, const Ray& ray, Interval range, Hit& hit);
+bool intersect_prepared(const void* shape, const Ray& ray, Interval range, Hit& hit,
+                        const WideRay* prepared);
+bool intersect_any_prepared(const void* shape, const Ray& ray, Interval range, Hit& hit,
+                            const WideRay* prepared);
 Vec3 normal(const void* shape, const Vec3& point, const Hit& hit);
 Vec3 shading_normal(const void* shape, const Vec3& point, const Hit& hit, const Vec3& face_n);
 Bounds bounds(const void* shape);
@@ -153,6 +159,23 @@ std::vector<Bounds> outline(const void* shape, std::size_t at_most);
 // The many_parts column of every mesh, true for each: a test searches its triangles, through
 // the mesh's own hierarchy.
 inline bool always_true(const void*) { return true; }
+
+namespace shaded {
+// The table row of a ShadedMesh read by `read` (15 and 16): everything but reading is the
+// shaded mesh's.
+constexpr PrimitiveFunctions functions_with(ReadShapeFn* read) {
+    return {.read = read,
+            .intersect = intersect,
+            .normal = normal,
+            .bounds = bounds,
+            .intersect_any = intersect_any,
+            .shading_normal = shading_normal,
+            .many_parts = always_true,
+            .outline = outline,
+            .intersect_prepared = intersect_prepared,
+            .intersect_any_prepared = intersect_any_prepared};
+}
+}  // namespace shaded
 // The outline column of the mesh (14), whose shape is a Core: its hierarchy's.
 inline std::vector<Bounds> core_outline(const void* shape, std::size_t at_most) {
     return static_cast<const Core*>(shape)->bvh.outline(at_most);

@@ -54,13 +54,6 @@ ShapeData read(SceneReader& reader) {
 }  // namespace
 
 // Everything but reading is the shaded mesh's (mesh_core.h), shared with the mesh from a file.
-extern const PrimitiveFunctions functions{.read = read,
-                                          .intersect = mesh_core::shaded::intersect,
-                                          .normal = mesh_core::shaded::normal,
-                                          .bounds = mesh_core::shaded::bounds,
-                                          .intersect_any = mesh_core::shaded::intersect_any,
-                                          .shading_normal = mesh_core::shaded::shading_normal,
-                                          .many_parts = mesh_core::always_true,
-                                          .outline = mesh_core::shaded::outline};
+extern const PrimitiveFunctions functions = mesh_core::shaded::functions_with(read);
 
 }  // namespace rt::smooth_mesh
