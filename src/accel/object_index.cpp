@@ -188,27 +188,6 @@ template <bool HandsOn>
     return sphere_crossing(e.sphere_parameters(), ray, range, t);
 }
 
-namespace {
-
-// The leaf(first, count, avx2, walked) of a walk over the objects, as the walk is to call it:
-// told the ray the walk prepared where HandsOn, and otherwise not, so that the walk keeps
-// nothing for it and the leaf is told nullptr.
-template <bool HandsOn, class Leaf>
-auto leaf_taking(Leaf& leaf) {
-    if constexpr (HandsOn)
-        return [&leaf](std::uint32_t first, std::uint32_t count, auto avx2, const WideRay* walked)
-            __attribute__((always_inline)) {
-            return leaf(first, count, avx2, walked);
-        };
-    else
-        return [&leaf](std::uint32_t first, std::uint32_t count, auto avx2)
-            __attribute__((always_inline)) {
-            return leaf(first, count, avx2, nullptr);
-        };
-}
-
-}  // namespace
-
 template <bool Culled, bool HandsOn>
 bool ObjectIndex::closest_in(const Ray& ray, Interval range, Found& found, std::uint64_t* tests,
                              bool bounded) const {
@@ -262,7 +241,7 @@ bool ObjectIndex::closest_in(const Ray& ray, Interval range, Found& found, std::
                  keep != 0; keep &= keep - 1)
                 ask(first + static_cast<std::uint32_t>(std::countr_zero(keep)), walked);
         };
-        bvh_.closest_leaves(ray, range.t_min, best, leaf_taking<HandsOn>(leaf));
+        bvh_.closest_leaves(ray, range.t_min, best, leaf);
     } else if constexpr (HandsOn) {
         bvh_.closest_leaves(
             ray, range.t_min, best,
@@ -327,7 +306,7 @@ bool ObjectIndex::any_in(const Ray& ray, Interval range, Blocker* last,
                 if (stops_if(first + k, (keep >> k & 1) != 0, walked)) return true;
             return false;
         };
-        return bvh_.any_leaves(ray, range.t_min, range.t_max, leaf_taking<HandsOn>(leaf));
+        return bvh_.any_leaves(ray, range.t_min, range.t_max, leaf);
     } else if constexpr (HandsOn) {
         return bvh_.any_leaves(
             ray, range.t_min, range.t_max,
