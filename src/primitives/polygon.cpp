@@ -51,7 +51,7 @@ constexpr double kCollinearTolerance = 1e-12;
 // band, and the toggles of the even-odd count commute, so the answer is exactly the one
 // every edge gives. Empty (no bands) for a polygon with few vertices.
 struct EdgeBands {
-    double origin = 0, top = 0;  // the outline's extent in v
+    double origin = 0;  // the outline's lowest v
     double scale = 0;
     std::uint32_t count = 0;               // bands
     const std::uint32_t* first = nullptr;  // per band, where its edges start in `edges`; the end
@@ -116,12 +116,9 @@ void file_edges(Polygon& polygon, SceneReader& reader) {
     const std::size_t n = outline.size();
     if (n < kBandedFrom) return;
     EdgeBands bands;
-    bands.origin = bands.top = outline[0].v;
-    for (const Point2& q : outline) {
-        bands.origin = std::fmin(bands.origin, q.v);
-        bands.top = std::fmax(bands.top, q.v);
-    }
-    const double extent = bands.top - bands.origin;
+    // The outline's extent in v, as its box (even_odd.h) already holds it.
+    bands.origin = polygon.outline_box.v_low;
+    const double extent = polygon.outline_box.v_high - bands.origin;
     if (!(extent > 0) || !std::isfinite(extent)) return;
     auto span = [&](std::size_t i) {
         const double a = outline[i].v, b = outline[i == 0 ? n - 1 : i - 1].v;
