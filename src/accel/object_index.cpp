@@ -85,9 +85,15 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
     });
     entries_.reserve(objects.size());
     entries_.resize(bounded_count_);
+    // Each entry's line is asked for a few objects ahead: a store to a line not in cache
+    // waits for it, and the processor fetches only so many at once for stores in order
+    // (spheres-1m's build 0.262 -> 0.243 s on one thread; further ahead gained less).
+    constexpr std::size_t kAhead = 16;
     parallel_parts(bounded_count_, threads, kPart, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t j = begin; j < end; ++j)
+        for (std::size_t j = begin; j < end; ++j) {
+            if (j + kAhead < end) __builtin_prefetch(&entries_[place[j + kAhead]], 1);
             entries_[place[j]] = entry(objects[bounded[j]], bounded[j], hands_on_ray());
+        }
     });
     entries_.insert(entries_.end(), unbounded.begin(), unbounded.end());
     if (bounded_count_ == 1) lone_outline_ = objects[bounded[0]].shape.functions->outline;
