@@ -1,6 +1,7 @@
 // The tracer against hand-computed values: the Phong terms, falloff, shadows, reflection,
 // refraction, the recursion limits and the render modes.
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <tuple>
 #include <utility>
@@ -277,6 +278,55 @@ TEST(reflect_obeys_the_law_of_reflection) {
         CHECK_NEAR(dot(cross(in, n), r), 0, 1e-12);  // in the plane of incidence
         CHECK_NEAR(length(cross(in, n)), length(cross(r, n)), 1e-12);
     }
+}
+
+TEST(a_highlight_judged_too_small_leaves_every_sum_as_it_is) {
+    // The tracer skips pow where highlight_may_count says the highlight cannot change the
+    // sum it joins. Checked here on the sums themselves: the highlight as the tracer computes
+    // it, added to terms from the smallest up to 2^30 times it, must leave each bit for bit.
+    // The angles are chosen so that the bound lands within 20 of its threshold either side,
+    // where a threshold a few units too low would let a highlight through.
+    constexpr double kLog2E = 1.4426950408889634;
+    Random random(41);
+    int skipped = 0, counted_and_changing = 0;
+    for (int i = 0; i < 200000; ++i) {
+        const int smallest_exp = static_cast<int>(random.uniform(-40, 10));
+        const int ks_exp = static_cast<int>(random.uniform(-20, 5));
+        const double smallest = std::ldexp(random.uniform(1, 2), smallest_exp);
+        const double ks = std::ldexp(random.uniform(1, 2), ks_exp);
+        const double ke = i % 4 == 0 ? random.uniform(1, 30) : std::exp(random.uniform(0, 11.6));
+        const double fall = ks_exp - smallest_exp + 56 + random.uniform(-20, 20);
+        double c = 1 - fall / (ke * kLog2E);
+        if (!(c > 0 && c < 1)) c = random.uniform();
+        if (!(c > 0)) continue;
+        const double highlight = ks * std::pow(c, ke);
+        bool changes = false;
+        const bool may_count = highlight_may_count(smallest, ks, c, ke);
+        for (int k = 0; k < 4; ++k) {
+            const double term = k == 0 ? smallest : smallest * std::ldexp(random.uniform(1, 2), k * 10);
+            const bool same = term + highlight == term;
+            if (!same) changes = true;
+            if (!may_count) CHECK(same);
+        }
+        if (!may_count) ++skipped;
+        if (may_count && changes) ++counted_and_changing;
+    }
+    // Both sides are exercised: many skipped, and many that were rightly computed.
+    CHECK(skipped > 50000);
+    CHECK(counted_and_changing > 50000);
+    // A few worked values: exponent 200 at cos 0.5 falls about 200 binary places; at 0.99,
+    // about 2.9.
+    CHECK(!highlight_may_count(0.3, 0.15, 0.5, 200));
+    CHECK(highlight_may_count(0.3, 0.15, 0.99, 200));
+    // What it cannot judge, it counts.
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double inf = std::numeric_limits<double>::infinity();
+    for (const auto& [smallest, ks, c, ke] : std::vector<std::tuple<double, double, double, double>>{
+             {0, 1, 0.1, 1e5}, {1e-300, 1, 0.1, 1e5}, {inf, 1, 0.1, 1e5}, {nan, 1, 0.1, 1e5},
+             {1, nan, 0.1, 1e5}, {1, inf, 0.1, 1e5}, {1, 1, nan, 1e5}, {1, 1, 1, 1e5},
+             {1, 1, 1.5, 1e5}, {1, 1, 0.1, 0}, {1, 1, 0.1, -5}, {1, 1, 0.1, nan}})
+        CHECK(highlight_may_count(smallest, ks, c, ke));
+    CHECK(!highlight_may_count(1, 1, 0.1, inf));  // pow gives 0
 }
 
 TEST(refract_obeys_snells_law) {

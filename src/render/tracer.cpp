@@ -200,7 +200,9 @@ Spectrum Tracer::lights_at(const Vec3& point, const Vec3& facing_normal, const V
             Spectrum term(0.0);
             if (options_.diffuse) term += m.colour * (m.kd * lambert);
             const double highlight = dot(reflected, s.direction);
-            if (options_.specular && ks > 0 && highlight > 0)
+            if (options_.specular && ks > 0 && highlight > 0 &&
+                highlight_may_count(*std::min_element(term.c.begin(), term.c.end()), ks, highlight,
+                                    m.ke))
                 term += Spectrum(ks * std::pow(highlight, m.ke));
             const Spectrum lit = s.intensity * term;
             if (!Diffuse && (lit.is_black() ||
