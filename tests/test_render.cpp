@@ -1,8 +1,10 @@
 // The tracer against hand-computed values: the Phong terms, falloff, shadows, reflection,
 // refraction, the recursion limits and the render modes.
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numbers>
+#include <string>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -450,6 +452,35 @@ TEST(camera_rays_follow_the_pixel_corner_formula) {
     const double alpha = (2.0 * 7 - 10) / 10, beta = -(2.0 * 1 - 4) / 4;
     CHECK_NEAR(r.origin, v.eye, 0);
     CHECK_NEAR(r.direction, normalized(centre + alpha * v.x + beta * v.y - v.eye), 1e-15);
+}
+
+TEST(a_rows_rays_are_the_pixels_rays_to_the_bit) {
+    // row_rays takes each column's alpha from a table made once; every ray must still be
+    // primary_ray's, bit for bit, at sizes that are and are not powers of two.
+    static_assert(sizeof(Ray) == 6 * sizeof(double));  // no padding for memcmp to read
+    for (const auto& [w, h] :
+         std::vector<std::pair<int, int>>{{37, 23}, {64, 64}, {1000, 3}, {7, 1}}) {
+        Scene s = parse_scene("102 0.3 -0.2 5 0 0 0 1.3 0.1 0 0 0.9 0.2 " + std::to_string(w) +
+                              " " + std::to_string(h) + "\n" + kSphere);
+        const Tracer tracer(s, RenderOptions{});
+        std::vector<Ray> rays;
+        for (int y = 0; y < h; ++y) {
+            tracer.row_rays(y, 0, w, rays);
+            CHECK_EQ(rays.size(), static_cast<std::size_t>(w));
+            for (int x = 0; x < w; ++x) {
+                const Ray expected = tracer.primary_ray(x, y);
+                const Ray& got = rays[static_cast<std::size_t>(x)];
+                CHECK(std::memcmp(&got, &expected, sizeof(Ray)) == 0);
+            }
+            // A part of a row, as a region renders it.
+            tracer.row_rays(y, w / 3, w - w / 4, rays);
+            for (int x = w / 3; x < w - w / 4; ++x) {
+                const Ray expected = tracer.primary_ray(x, y);
+                CHECK(std::memcmp(&rays[static_cast<std::size_t>(x - w / 3)], &expected,
+                                  sizeof(Ray)) == 0);
+            }
+        }
+    }
 }
 
 // The render makes a row's rays before tracing them (Tracer::row_rays); every pixel must

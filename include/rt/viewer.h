@@ -22,8 +22,13 @@ struct Viewer {
     // The same with the image plane's centre given (plane_centre(), which every ray shares:
     // the tracer computes it once instead of a square root and a division per ray).
     Ray primary_ray(double px, double py, const Vec3& centre) const {
-        const double alpha = (2 * px - xres) / xres;
-        const double beta = -(2 * py - yres) / yres;
+        return ray_through(alpha(px), beta(py), centre);
+    }
+    // The formula's two parts: the image plane's coordinates of raster position px and py
+    // (each from -1 to 1), and the ray through the point they give.
+    double alpha(double px) const { return (2 * px - xres) / xres; }
+    double beta(double py) const { return -(2 * py - yres) / yres; }
+    Ray ray_through(double alpha, double beta, const Vec3& centre) const {
         return {eye, normalized(centre + alpha * x + beta * y - eye)};
     }
     // The image plane's centre: one unit from the eye towards the point looked at.

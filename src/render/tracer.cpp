@@ -86,6 +86,9 @@ Tracer::Tracer(const Scene& scene, const RenderOptions& options, const PixelRect
                      kBlockerPadding) {
     for (const Light& light : scene.lights)
         light_rows_.push_back({&light, light.point(), light.sample_count()});
+    column_alphas_.resize(static_cast<std::size_t>(std::max(scene.viewer.xres, 0)));
+    for (std::size_t x = 0; x < column_alphas_.size(); ++x)
+        column_alphas_[x] = scene.viewer.alpha(static_cast<double>(x));
     // A backend replaces the hierarchy: it is asked on the path of the linear scan, so that
     // rt's own path (the hierarchy's) does not test for it on every ray.
     if (options_.queries != nullptr) options_.accelerate = false;
