@@ -103,14 +103,17 @@ class alignas(64) Tracer {
     // The columns' alphas come from a table, each the same double primary_ray computes: a
     // division less per ray, where the square root and the division that normalise it
     // already keep the divider busy.
-    void row_rays(int y, int x0, int x1, std::vector<Ray>& rays) const {
-        rays.resize(static_cast<std::size_t>(x1 - x0));
-        const Viewer& viewer = scene_.viewer;
-        const double beta = viewer.beta(y);
-        for (int x = x0; x < x1; ++x)
-            rays[static_cast<std::size_t>(x - x0)] =
-                viewer.ray_through(column_alphas_[static_cast<std::size_t>(x)], beta, plane_centre_);
+    // A pixel whose ray surely meets nothing (no bounded object's box on it, by the primary
+    // mask, and no unbounded object in the scene) gets no ray: `spared` marks it with 1, and
+    // its value is blank_pixel(). Returns how many were spared.
+    std::size_t row_rays(int y, int x0, int x1, std::vector<Ray>& rays,
+                         std::vector<unsigned char>& spared) const;
+    // A spared pixel's value: what a primary ray that hits nothing brings back in the render
+    // mode. count_blank_pixels counts them as the primary rays they stand for.
+    Spectrum blank_pixel() const {
+        return options_.mode == RenderMode::trace ? escaped_ : Spectrum(0.0);
     }
+    void count_blank_pixels(std::size_t count) { stats_.primary_rays += count; }
 
     // The nearest hit; with `bounded` false, among the unbounded objects only (for a ray
     // the primary mask says crosses no bounded object's box).
@@ -167,6 +170,7 @@ class alignas(64) Tracer {
     // Which pixels' primary rays may meet a bounded object; shared by the copies a render
     // makes for its threads (read-only). Empty without the hierarchy.
     std::shared_ptr<const PrimaryMask> primary_mask_;
+    bool has_unbounded_ = false;  // the scene has objects with no finite bounds (planes)
     // Per level of the ray tree and per light, the object that last blocked a shadow ray
     // toward it (Haines's shadow cache): a row of lights() for each of blocker_levels_
     // levels, from kBlockerPadding on; the levels from kBlockerLevels - 1 on share the last

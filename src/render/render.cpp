@@ -113,9 +113,13 @@ void row_through_store(RowStore* store, int pass, int y, int x0, int x1, Pixels&
 template <typename Pixels>
 void one_ray_row(Tracer& tracer, RowStore* store, int pass, int y, int x0, int x1, Pixels& out) {
     thread_local std::vector<Ray> rays;
-    tracer.row_rays(y, x0, x1, rays);
+    thread_local std::vector<unsigned char> spared;
+    const std::size_t blanks = tracer.row_rays(y, x0, x1, rays, spared);
+    const Spectrum blank = tracer.blank_pixel();
     row_through_store(store, pass, y, x0, x1, out, [&](int x) {
-        return tracer.shade_pixel_ray(rays[static_cast<std::size_t>(x - x0)], x, y);
+        const auto i = static_cast<std::size_t>(x - x0);
+        if (i == 0) tracer.count_blank_pixels(blanks);  // traced, not restored: counted
+        return spared[i] != 0 ? blank : tracer.shade_pixel_ray(rays[i], x, y);
     });
 }
 

@@ -101,6 +101,7 @@ Tracer::Tracer(const Scene& scene, const RenderOptions& options, const PixelRect
             static_cast<std::size_t>(area.width()) * static_cast<std::size_t>(area.height());
         primary_mask_ = std::make_shared<const PrimaryMask>(
             scene.viewer, index_->outline(std::max<std::size_t>(pixels / 256, 8)), area);
+        has_unbounded_ = index_->unbounded_count() > 0;
     }
 }
 
@@ -282,6 +283,27 @@ Spectrum Tracer::trace(const Ray& ray, int depth, double weight, double ior,
 }
 
 Spectrum Tracer::shade_primary(const Ray& ray) { return primary(ray, true); }
+
+std::size_t Tracer::row_rays(int y, int x0, int x1, std::vector<Ray>& rays,
+                             std::vector<unsigned char>& spared) const {
+    const auto width = static_cast<std::size_t>(x1 - x0);
+    rays.resize(width);
+    spared.assign(width, 0);
+    std::size_t count = 0;
+    if (primary_mask_ != nullptr && !has_unbounded_)
+        for (std::size_t i = 0; i < width; ++i)
+            if (!primary_mask_->may_hit(x0 + static_cast<int>(i), y)) {
+                spared[i] = 1;
+                ++count;
+            }
+    const Viewer& viewer = scene_.viewer;
+    const double beta = viewer.beta(y);
+    for (std::size_t i = 0; i < width; ++i)
+        if (spared[i] == 0)
+            rays[i] = viewer.ray_through(column_alphas_[static_cast<std::size_t>(x0) + i], beta,
+                                         plane_centre_);
+    return count;
+}
 
 Spectrum Tracer::shade_pixel_ray(const Ray& ray, int x, int y) {
     return primary(ray, primary_mask_ == nullptr || primary_mask_->may_hit(x, y));
