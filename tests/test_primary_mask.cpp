@@ -293,6 +293,21 @@ TEST(renders_with_the_mask_are_the_linear_scans) {
         linear.accelerate = false;
         options.mode = linear.mode = RenderMode::normal;
         CHECK(identical(render(scene, options), render(scene, linear)));
+        // Pixels that meet nothing are not traced at all (Tracer::row_rays, pixel), in every
+        // mode, and still counted as the primary rays they stand for.
+        options.mode = linear.mode = RenderMode::depth;
+        options.samples = linear.samples = 3;
+        RenderStats masked_stats, linear_stats;
+        CHECK(identical(render(scene, options, &masked_stats),
+                        render(scene, linear, &linear_stats)));
+        CHECK_EQ(masked_stats.primary_rays, linear_stats.primary_rays);
+        options.mode = linear.mode = RenderMode::trace;
+        options.samples = linear.samples = 1;
+        masked_stats = linear_stats = {};
+        CHECK(identical(render(scene, options, &masked_stats),
+                        render(scene, linear, &linear_stats)));
+        CHECK_EQ(masked_stats.primary_rays, linear_stats.primary_rays);
+        CHECK_EQ(masked_stats.shadow_rays, linear_stats.shadow_rays);
     }
     CHECK(sparing > 12);
 }

@@ -341,12 +341,19 @@ Spectrum Tracer::pixel(int x, int y, const Spectrum* traced_centre) {
     // original's ray itself, and a value already traced for it can stand in, bit for bit.
     const int middle = n % 2 == 1 ? n / 2 : -1;
     const bool bounded = primary_mask_ == nullptr || primary_mask_->may_hit(x, y);
+    // Rays that surely meet nothing (as in row_rays) are not made: each is the background.
+    const bool blank = !bounded && !has_unbounded_;
     Spectrum sum(0.0);
     for (int j = 0; j < n; ++j) {
         const double v = (j + 0.5) / n - 0.5;
         for (int i = 0; i < n; ++i) {
             if (traced_centre != nullptr && i == middle && j == middle) {
                 sum += *traced_centre;
+                continue;
+            }
+            if (blank) {
+                count_blank_pixels(1);
+                sum += blank_pixel();
                 continue;
             }
             const double u = (i + 0.5) / n - 0.5;
