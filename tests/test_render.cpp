@@ -1,6 +1,8 @@
 // The tracer against hand-computed values: the Phong terms, falloff, shadows, reflection,
 // refraction, the recursion limits and the render modes.
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <numbers>
@@ -553,6 +555,46 @@ TEST(supersampling_averages_a_grid_centred_on_the_original_ray) {
     CHECK_NEAR(Tracer(s, options).pixel(1, 1), Spectrum(3.0 / 9, 1.0 / 9, 0), 1e-15);
     options.samples = 1;  // one sample is the original's ray itself
     CHECK_NEAR(Tracer(s, options).pixel(1, 1), Spectrum(0, 1, 0), 0);
+}
+
+TEST(a_supersampled_pixel_is_its_grids_mean_to_the_bit) {
+    // pixel() makes its grid's rays from n alphas and n betas before tracing any; each must
+    // still be primary_ray(x + u, y + v)'s, traced as shade_primary traces it, summed in
+    // the grid's order. Checked bit for bit against that sum, with and without a plane (no
+    // pixel is then spared), with the centre's value handed in for odd n.
+    for (const bool with_plane : {false, true}) {
+        const Scene s = parse_scene(
+            "102 0.3 -0.2 5 0 0 0 1.3 0.1 0 0 0.9 0.2 13 9\n" + kSphere +
+            "1 0.4  1 1 1.5  100 0.2 0.9 0.3 0.6 20 0.5 0 1\n101 2 3 4 20 20 20\n103 .1 .1 .1\n" +
+            (with_plane ? "2  0 1 0 -1.2  100 0.7 0.7 0.7 0.5 10 0.3 0 1\n" : ""));
+        Tracer oracle(s, RenderOptions{});
+        for (const int n : {2, 3, 4, 7}) {
+            RenderOptions options;
+            options.samples = n;
+            Tracer tracer(s, options);
+            for (int y = 0; y < s.viewer.yres; ++y)
+                for (int x = 0; x < s.viewer.xres; ++x) {
+                    Spectrum sum(0.0);
+                    for (int j = 0; j < n; ++j)
+                        for (int i = 0; i < n; ++i) {
+                            const double u = (i + 0.5) / n - 0.5, v = (j + 0.5) / n - 0.5;
+                            sum += oracle.shade_primary(s.viewer.primary_ray(x + u, y + v));
+                        }
+                    const Spectrum expected = sum * (1.0 / (n * n));
+                    const Spectrum got = tracer.pixel(x, y);
+                    for (std::size_t c = 0; c < kSpectrumComponents; ++c)
+                        CHECK_EQ(std::bit_cast<std::uint64_t>(got[c]),
+                                 std::bit_cast<std::uint64_t>(expected[c]));
+                    if (n % 2 == 1) {
+                        const Spectrum centre = oracle.shade_primary(s.viewer.primary_ray(x, y));
+                        const Spectrum handed = tracer.pixel(x, y, &centre);
+                        for (std::size_t c = 0; c < kSpectrumComponents; ++c)
+                            CHECK_EQ(std::bit_cast<std::uint64_t>(handed[c]),
+                                     std::bit_cast<std::uint64_t>(expected[c]));
+                    }
+                }
+        }
+    }
 }
 
 TEST(supersampling_sums_the_expected_rays) {

@@ -149,9 +149,13 @@ class alignas(64) Tracer {
     const ObjectIndex* index_;  // the scene's hierarchy, when options_.accelerate
     RenderOptions options_;     // a copy: small, and safe when built from a temporary
     RenderStats stats_;
-    Spectrum escaped_;   // what a traced ray that hits nothing brings back
-    Vec3 plane_centre_;  // the viewer's, which every primary ray shares
+    Spectrum escaped_;                   // what a traced ray that hits nothing brings back
+    Vec3 plane_centre_;                  // the viewer's, which every primary ray shares
     std::vector<double> column_alphas_;  // viewer.alpha(x) for each column x of the image
+    // pixel()'s grid: the offsets (k + 1/2)/n - 1/2 of options.samples = n, and room for a
+    // pixel's alphas, betas and rays, made before any is traced.
+    std::vector<double> grid_offsets_, grid_alphas_, grid_betas_;
+    std::vector<Ray> grid_rays_;
     // Per light of the scene, looked up once: its sample count and, for a point light, its
     // parameters, which the light loop samples inline (sample_point_light) rather than
     // through the light table (the SPD's tree, seven point lights: 0.94 of the time).

@@ -89,6 +89,13 @@ Tracer::Tracer(const Scene& scene, const RenderOptions& options, const PixelRect
     column_alphas_.resize(static_cast<std::size_t>(std::max(scene.viewer.xres, 0)));
     for (std::size_t x = 0; x < column_alphas_.size(); ++x)
         column_alphas_[x] = scene.viewer.alpha(static_cast<double>(x));
+    if (options_.samples > 1) {
+        const int n = options_.samples;
+        for (int k = 0; k < n; ++k) grid_offsets_.push_back((k + 0.5) / n - 0.5);
+        grid_alphas_.resize(static_cast<std::size_t>(n));
+        grid_betas_.resize(static_cast<std::size_t>(n));
+        grid_rays_.resize(static_cast<std::size_t>(n) * static_cast<std::size_t>(n));
+    }
     // A backend replaces the hierarchy: it is asked on the path of the linear scan, so that
     // rt's own path (the hierarchy's) does not test for it on every ray.
     if (options_.queries != nullptr) options_.accelerate = false;
@@ -343,9 +350,24 @@ Spectrum Tracer::pixel(int x, int y, const Spectrum* traced_centre) {
     const bool bounded = primary_mask_ == nullptr || primary_mask_->may_hit(x, y);
     // Rays that surely meet nothing (as in row_rays) are not made: each is the background.
     const bool blank = !bounded && !has_unbounded_;
+    const auto size = static_cast<std::size_t>(n);
+    if (!blank) {
+        // The grid's n alphas and n betas, then its rays, before any is traced: each the
+        // double primary_ray(x + u, y + v) computes, with two divisions a pixel's row or
+        // column of samples instead of two a sample, and the rays' square roots and divisions
+        // overlapping rather than each waiting ahead of its trace.
+        const Viewer& viewer = scene_.viewer;
+        for (std::size_t k = 0; k < size; ++k) {
+            grid_alphas_[k] = viewer.alpha(x + grid_offsets_[k]);
+            grid_betas_[k] = viewer.beta(y + grid_offsets_[k]);
+        }
+        for (std::size_t j = 0; j < size; ++j)
+            for (std::size_t i = 0; i < size; ++i)
+                grid_rays_[j * size + i] =
+                    viewer.ray_through(grid_alphas_[i], grid_betas_[j], plane_centre_);
+    }
     Spectrum sum(0.0);
     for (int j = 0; j < n; ++j) {
-        const double v = (j + 0.5) / n - 0.5;
         for (int i = 0; i < n; ++i) {
             if (traced_centre != nullptr && i == middle && j == middle) {
                 sum += *traced_centre;
@@ -356,8 +378,9 @@ Spectrum Tracer::pixel(int x, int y, const Spectrum* traced_centre) {
                 sum += blank_pixel();
                 continue;
             }
-            const double u = (i + 0.5) / n - 0.5;
-            sum += primary(scene_.viewer.primary_ray(x + u, y + v, plane_centre_), bounded);
+            sum += primary(
+                grid_rays_[static_cast<std::size_t>(j) * size + static_cast<std::size_t>(i)],
+                bounded);
         }
     }
     return sum * (1.0 / (n * n));
