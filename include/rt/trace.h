@@ -174,7 +174,9 @@ class alignas(64) Tracer {
     // Which pixels' primary rays may meet a bounded object; shared by the copies a render
     // makes for its threads (read-only). Empty without the hierarchy.
     std::shared_ptr<const PrimaryMask> primary_mask_;
-    bool has_unbounded_ = false;  // the scene has objects with no finite bounds (planes)
+    // Whether a pixel the mask leaves unmarked meets nothing at all, so that it needs no ray
+    // (row_rays, pixel): there is a mask, and no unbounded object (a plane) to ask instead.
+    bool spares_blank_pixels_ = false;
     // Per level of the ray tree and per light, the object that last blocked a shadow ray
     // toward it (Haines's shadow cache): a row of lights() for each of blocker_levels_
     // levels, from kBlockerPadding on; the levels from kBlockerLevels - 1 on share the last

@@ -108,7 +108,7 @@ Tracer::Tracer(const Scene& scene, const RenderOptions& options, const PixelRect
             static_cast<std::size_t>(area.width()) * static_cast<std::size_t>(area.height());
         primary_mask_ = std::make_shared<const PrimaryMask>(
             scene.viewer, index_->outline(std::max<std::size_t>(pixels / 256, 8)), area);
-        has_unbounded_ = index_->unbounded_count() > 0;
+        spares_blank_pixels_ = index_->unbounded_count() == 0;
     }
 }
 
@@ -297,7 +297,7 @@ std::size_t Tracer::row_rays(int y, int x0, int x1, std::vector<Ray>& rays,
     rays.resize(width);
     spared.assign(width, 0);
     std::size_t count = 0;
-    if (primary_mask_ != nullptr && !has_unbounded_)
+    if (spares_blank_pixels_)
         for (std::size_t i = 0; i < width; ++i)
             if (!primary_mask_->may_hit(x0 + static_cast<int>(i), y)) {
                 spared[i] = 1;
@@ -349,7 +349,7 @@ Spectrum Tracer::pixel(int x, int y, const Spectrum* traced_centre) {
     const int middle = n % 2 == 1 ? n / 2 : -1;
     const bool bounded = primary_mask_ == nullptr || primary_mask_->may_hit(x, y);
     // Rays that surely meet nothing (as in row_rays) are not made: each is the background.
-    const bool blank = !bounded && !has_unbounded_;
+    const bool blank = spares_blank_pixels_ && !bounded;
     const auto size = static_cast<std::size_t>(n);
     if (!blank) {
         // The grid's n alphas and n betas, then its rays, before any is traced: each the
