@@ -87,7 +87,8 @@ ObjectIndex::ObjectIndex(std::span<const Object> objects, int threads)
     entries_.resize(bounded_count_);
     // Each entry's line is asked for a few objects ahead: a store to a line not in cache
     // waits for it, and the processor fetches only so many at once for stores in order
-    // (spheres-1m's build 0.262 -> 0.243 s on one thread; further ahead gained less).
+    // (spheres-1m's build 0.271 -> 0.250 s on one thread, docs/performance.md; further
+    // ahead gained less).
     constexpr std::size_t kAhead = 16;
     parallel_parts(bounded_count_, threads, kPart, [&](std::size_t begin, std::size_t end) {
         for (std::size_t j = begin; j < end; ++j) {
@@ -327,44 +328,38 @@ bool ObjectIndex::any_in(const Ray& ray, Interval range, Blocker* last,
     }
 }
 
+// The plain queries are called from the header; the other forms only from closest_other and
+// any_other below, which instantiate them.
 template bool ObjectIndex::closest_in<false, false>(const Ray&, Interval, Found&, std::uint64_t*,
                                                     bool) const;
 template bool ObjectIndex::any_in<false, false>(const Ray&, Interval, Blocker*,
                                                 std::uint64_t*) const;
-template bool ObjectIndex::closest_in<false, true>(const Ray&, Interval, Found&, std::uint64_t*,
-                                                   bool) const;
-template bool ObjectIndex::any_in<false, true>(const Ray&, Interval, Blocker*,
-                                               std::uint64_t*) const;
-template bool ObjectIndex::closest_in<true, false>(const Ray&, Interval, Found&, std::uint64_t*,
-                                                   bool) const;
-template bool ObjectIndex::any_in<true, false>(const Ray&, Interval, Blocker*,
-                                               std::uint64_t*) const;
-template bool ObjectIndex::closest_in<true, true>(const Ray&, Interval, Found&, std::uint64_t*,
-                                                  bool) const;
-template bool ObjectIndex::any_in<true, true>(const Ray&, Interval, Blocker*, std::uint64_t*) const;
+
+template <class Query>
+bool ObjectIndex::other_form(const Query& query) const {
+    switch (queries_) {
+        case kCulled:
+            return query(std::true_type{}, std::false_type{});
+        case kHandsOn:
+            return query(std::false_type{}, std::true_type{});
+        default:
+            return query(std::true_type{}, std::true_type{});
+    }
+}
 
 bool ObjectIndex::closest_other(const Ray& ray, Interval range, Found& found,
                                 std::uint64_t* tests) const {
-    switch (queries_) {
-        case kCulled:
-            return closest_in<true, false>(ray, range, found, tests);
-        case kHandsOn:
-            return closest_in<false, true>(ray, range, found, tests);
-        default:
-            return closest_in<true, true>(ray, range, found, tests);
-    }
+    return other_form([&](auto culled, auto hands_on) {
+        return closest_in<decltype(culled)::value, decltype(hands_on)::value>(ray, range, found,
+                                                                              tests);
+    });
 }
 
 bool ObjectIndex::any_other(const Ray& ray, Interval range, Blocker* last,
                             std::uint64_t* tests) const {
-    switch (queries_) {
-        case kCulled:
-            return any_in<true, false>(ray, range, last, tests);
-        case kHandsOn:
-            return any_in<false, true>(ray, range, last, tests);
-        default:
-            return any_in<true, true>(ray, range, last, tests);
-    }
+    return other_form([&](auto culled, auto hands_on) {
+        return any_in<decltype(culled)::value, decltype(hands_on)::value>(ray, range, last, tests);
+    });
 }
 
 void Scene::build_index(int threads) {

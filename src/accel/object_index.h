@@ -144,7 +144,10 @@ class ObjectIndex {
                     bool bounded = true) const;
     template <bool Culled, bool HandsOn>
     bool any_in(const Ray& ray, Interval range, Blocker* last, std::uint64_t* tests) const;
-    // closest_in and any_in for an index whose queries are not plain.
+    // closest_in and any_in for an index whose queries are not plain: other_form calls
+    // query(culled, hands_on), two std::bool_constant, for the form queries_ names.
+    template <class Query>
+    bool other_form(const Query& query) const;
     bool closest_other(const Ray& ray, Interval range, Found& found, std::uint64_t* tests) const;
     bool any_other(const Ray& ray, Interval range, Blocker* last, std::uint64_t* tests) const;
     // Whether entry i is hit in range (hit as intersect leaves it). `walked`: the ray as the
