@@ -57,6 +57,21 @@ Vec3 awkward_direction(Random& random, int i) {
     return d;
 }
 
+// random_boxes(random, count, 10, 0.7) scaled by `scale`.
+std::vector<Bounds> scaled_random_boxes(Random& random, std::size_t count, double scale) {
+    std::vector<Bounds> boxes = random_boxes(random, count, 10, 0.7);
+    for (Bounds& b : boxes) b = {scaled(b.min, scale), scaled(b.max, scale)};
+    return boxes;
+}
+
+// Ray r of a traversal test over `boxes` (scaled by `scale`): from a random point, or every
+// fourth from a box's corner, in an awkward direction.
+Ray awkward_ray(Random& random, int r, const std::vector<Bounds>& boxes, double scale) {
+    Vec3 origin = scaled(random.in_box(12), scale);
+    if (r % 4 == 0) origin = boxes[random.next() % boxes.size()].min;  // on a corner
+    return {origin, awkward_direction(random, r)};
+}
+
 // Checks every wide node below `index`: children in use from the first lane, leaves small,
 // each interior lane's box holding its node's boxes, each leaf lane's box holding its
 // primitives' boxes; marks the leaves' primitives seen.
@@ -242,14 +257,11 @@ TEST(rays_beyond_float_range_take_the_double_test) {
 TEST(vector_scalar_and_double_traversals_offer_the_same_boxes) {
     Random random(23);
     for (const double scale : {1e-30, 1.0, 1e25}) {
-        std::vector<Bounds> boxes = random_boxes(random, 3000, 10, 0.7);
-        for (Bounds& b : boxes) b = {scaled(b.min, scale), scaled(b.max, scale)};
+        const std::vector<Bounds> boxes = scaled_random_boxes(random, 3000, scale);
         const Bvh bvh(boxes);
         int failures = 0;
         for (int r = 0; r < 1500; ++r) {
-            Vec3 origin = scaled(random.in_box(12), scale);
-            if (r % 4 == 0) origin = boxes[random.next() % boxes.size()].min;  // on a corner
-            const Ray ray{origin, awkward_direction(random, r)};
+            const Ray ray = awkward_ray(random, r, boxes, scale);
             const double t_max = r % 2 ? kInfinity : random.uniform(1, 20) * scale;
             const auto exact = offered<BoxTest::exact>(bvh, ray, 0, t_max);
             const auto simd = offered<BoxTest::simd>(bvh, ray, 0, t_max);
@@ -371,14 +383,11 @@ struct Visits {
 TEST(a_walk_handed_its_prepared_ray_visits_what_it_would_visit_preparing_it) {
     Random random(31);
     for (const double scale : {1e-30, 1.0, 1e25}) {
-        std::vector<Bounds> boxes = random_boxes(random, 2000, 10, 0.7);
-        for (Bounds& b : boxes) b = {scaled(b.min, scale), scaled(b.max, scale)};
+        const std::vector<Bounds> boxes = scaled_random_boxes(random, 2000, scale);
         const Bvh bvh(boxes);
         int differ = 0, handed = 0, told_on = 0;
         for (int r = 0; r < 1500; ++r) {
-            Vec3 origin = scaled(random.in_box(12), scale);
-            if (r % 4 == 0) origin = boxes[random.next() % boxes.size()].min;
-            const Ray ray{origin, awkward_direction(random, r)};
+            const Ray ray = awkward_ray(random, r, boxes, scale);
             const double t_min = r % 3 == 0 ? 0 : random.uniform(0, 5) * scale;
             // A t_max that falls as leaves are visited, as a nearest hit's does.
             const double start = r % 2 ? kInfinity : random.uniform(5, 20) * scale;
